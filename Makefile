@@ -1,0 +1,51 @@
+# The newcomer's menu. `make lab` starts the course, `make test` runs every test.
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP_ENV := $(VENV)/.installed
+STAMP_WS := rosject/install/.built
+ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o -type f -print 2>/dev/null)
+
+.PHONY: lab setup test test-fast bench notebooks lint format clean doctor stop
+
+lab: setup  ## Start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
+	$(PY) -m course_lib lab $(EXTRA)
+
+setup: $(STAMP_ENV) $(STAMP_WS)  ## Build the environment and the ROS workspace
+
+test: setup  ## Run the whole test suite (unit, integration, notebooks, browser)
+	$(PY) -m course_lib test
+
+test-fast: setup  ## Unit tests only (no ROS, milliseconds)
+	$(PY) -m pytest tests/unit -q
+
+bench: setup  ## Print the course's speed and memory figures
+	$(PY) -m bench
+
+notebooks: setup  ## Re-execute every notebook to refresh its stored outputs
+	$(PY) -m course_lib notebooks
+
+lint: setup  ## ruff lint and format check
+	$(VENV)/bin/ruff check . && $(VENV)/bin/ruff format --check .
+
+format: setup
+	$(VENV)/bin/ruff format . && $(VENV)/bin/ruff check --fix .
+
+doctor: setup  ## Say what is installed and what is running
+	$(PY) -m course_lib doctor
+
+stop: ## Stop every course process of this user
+	$(PY) -m course_lib stop
+
+$(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py
+	@$(PYTHON) scripts/check_platform.py
+	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --disable-pip-version-check -r environment.txt
+	$(PY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
+	@touch $@
+
+$(STAMP_WS): $(STAMP_ENV) $(ROSJECT_SOURCES)
+	$(PY) -m course_lib build
+
+clean:  ## Remove the environment and the built workspace
+	rm -rf $(VENV) rosject/build rosject/install rosject/log

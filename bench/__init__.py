@@ -1,0 +1,1 @@
+"""Scripts that print the course's speed and memory figures (`make bench`)."""

@@ -1,0 +1,113 @@
+"""Measure the `ros2` doors: notebook magic and terminal command round trips, node discovery.
+
+Run: .venv/bin/python bench/ros2_latency.py [--runs N]
+Prints medians (and max) in milliseconds; the real Jazzy tools take 1.4-2.0 s per `param get`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO))
+
+from course_lib.ros2 import client, start_daemon  # noqa: E402
+from course_lib.ros2.client import wait_until  # noqa: E402
+from course_lib.ros2.connect import daemon_socket  # noqa: E402
+from course_lib.ros2.magics import run_line  # noqa: E402
+from course_lib.session import get_session  # noqa: E402
+
+NODE = REPO / "tests" / "golden" / "ros2" / "nodes" / "param_vel_node.py"
+
+
+def _timed(action, runs: int) -> list[float]:  # type: ignore[no-untyped-def]
+    times = []
+    for _ in range(runs):
+        start = time.perf_counter()
+        action()
+        times.append(time.perf_counter() - start)
+    return times
+
+
+def _report(label: str, times: list[float]) -> None:
+    print(
+        f"{label:44s} median {statistics.median(times) * 1e3:8.1f} ms   "
+        f"max {max(times) * 1e3:8.1f} ms   (n={len(times)})"
+    )
+
+
+def _terminal(env: dict[str, str], *args: str) -> None:
+    proc = subprocess.run(
+        [str(REPO / ".venv" / "bin" / "ros2"), *args],
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert proc.returncode == 0, proc.stderr
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--runs", type=int, default=30)
+    runs = parser.parse_args().runs
+    session = get_session()
+    env = {**session.env, "PYTHONPATH": str(REPO)}
+    daemon = start_daemon(session.env)
+    node = session.spawn([sys.executable, str(NODE)], name="vel")
+    try:
+        assert client().wait_for_node("/param_vel_node", include_hidden=False, timeout=10)
+        assert wait_until(lambda: daemon_socket(session.domain_id).exists(), 15)
+        print(f"domain {session.domain_id}")
+        _report(
+            "magic  %ros2 param get",
+            _timed(lambda: run_line("param get /param_vel_node velocity"), runs),
+        )
+        _report(
+            "magic  %ros2 param set",
+            _timed(lambda: run_line("param set /param_vel_node velocity 0.0"), runs),
+        )
+        _terminal(env, "param", "get", "/param_vel_node", "velocity")  # warm the daemon
+        _report(
+            "terminal ros2 param get (daemon warm)",
+            _timed(
+                lambda: _terminal(env, "param", "get", "/param_vel_node", "velocity"), runs // 2
+            ),
+        )
+        _report(
+            "terminal ros2 param set (daemon warm)",
+            _timed(
+                lambda: _terminal(env, "param", "set", "/param_vel_node", "velocity", "0.0"),
+                runs // 2,
+            ),
+        )
+        node.stop()
+        spawn_to_answer = []
+        for _ in range(max(3, runs // 6)):
+            start = time.perf_counter()
+            child = session.spawn([sys.executable, str(NODE)], name="vel")
+            out = run_line("param get /param_vel_node velocity").output
+            spawn_to_answer.append(time.perf_counter() - start)
+            assert out.stdout == "Double value is: 0.0\n", out
+            child.stop()
+            wait_until(
+                lambda: "/param_vel_node" not in [n.full_name for n in client().node_names()], 10
+            )
+        _report("node spawn -> first answered param get", spawn_to_answer)
+        _report(
+            "missing node -> 'Node not found'",
+            _timed(lambda: run_line("param get /no_such_node velocity"), 2),
+        )
+    finally:
+        node.stop()
+        daemon.stop()
+        session.close()
+
+
+if __name__ == "__main__":
+    main()

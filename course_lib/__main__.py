@@ -1,0 +1,7 @@
+"""Entry point of `python -m course_lib`."""
+
+import sys
+
+from .course_cli import main
+
+sys.exit(main())

@@ -1,0 +1,126 @@
+"""Find ROS packages and their executables through the ament index, as `ros2 run` does."""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Mapping
+from pathlib import Path
+
+from .errors import ExecutableNotFoundError, PackageNotFoundError
+from .paths import WORKSPACE_INSTALL_DIR
+
+__all__ = [
+    "find_executable",
+    "list_packages",
+    "package_executables",
+    "package_prefix",
+    "package_share_directory",
+    "workspace_env",
+]
+
+_MARKERS = Path("share/ament_index/resource_index/packages")
+
+
+def _prefixes(env: Mapping[str, str] | None = None) -> list[Path]:
+    env = os.environ if env is None else env
+    raw = env.get("AMENT_PREFIX_PATH")
+    if raw is None:  # outside a sourced shell: the course's own workspace
+        return [WORKSPACE_INSTALL_DIR]
+    return [Path(p) for p in raw.split(os.pathsep) if p]
+
+
+def list_packages(env: Mapping[str, str] | None = None) -> dict[str, Path]:
+    """Return every indexed package name with its prefix (first prefix wins)."""
+    found: dict[str, Path] = {}
+    for prefix in _prefixes(env):
+        marker_dir = prefix / _MARKERS
+        if marker_dir.is_dir():
+            for marker in sorted(marker_dir.iterdir()):
+                found.setdefault(marker.name, prefix)
+    return found
+
+
+def package_prefix(package: str, env: Mapping[str, str] | None = None) -> Path:
+    """Return the install prefix of `package`."""
+    for prefix in _prefixes(env):
+        if (prefix / _MARKERS / package).is_file():
+            return prefix
+    raise PackageNotFoundError(package)
+
+
+def package_share_directory(package: str, env: Mapping[str, str] | None = None) -> Path:
+    """Return `<prefix>/share/<package>`."""
+    return package_prefix(package, env) / "share" / package
+
+
+def package_executables(package: str, env: Mapping[str, str] | None = None) -> list[str]:
+    """Return the names of the executables in `<prefix>/lib/<package>`, sorted."""
+    lib = package_prefix(package, env) / "lib" / package
+    if not lib.is_dir():
+        return []
+    return sorted(p.name for p in lib.iterdir() if p.is_file() and os.access(p, os.X_OK))
+
+
+def find_executable(package: str, executable: str, env: Mapping[str, str] | None = None) -> Path:
+    """Return the path of `executable` in `package`."""
+    available = package_executables(package, env)
+    if executable not in available:
+        raise ExecutableNotFoundError(package, executable, available)
+    return package_prefix(package, env) / "lib" / package / executable
+
+
+def _prepend(value: str, existing: str | None) -> str:
+    parts = [value] + [p for p in (existing or "").split(os.pathsep) if p and p != value]
+    return os.pathsep.join(parts)
+
+
+def _dsv_actions(prefix: Path, dsv: Path, seen: set[Path]) -> list[tuple[str, str, str]]:
+    """Return (action, variable, value) from a colcon .dsv hook, following `source;` lines."""
+    if dsv in seen or not dsv.is_file():
+        return []
+    seen.add(dsv)
+    actions = []
+    for line in dsv.read_text().splitlines():
+        action, _, rest = line.partition(";")
+        if action == "source":
+            target = (prefix / rest) if not Path(rest).is_absolute() else Path(rest)
+            if target.suffix == ".dsv":
+                actions += _dsv_actions(prefix, target.resolve(), seen)
+        elif rest:
+            variable, _, value = rest.partition(";")
+            path = (
+                prefix / value
+                if value and not Path(value).is_absolute()
+                else Path(value or prefix)
+            )
+            actions.append((action, variable, str(path)))
+    return actions
+
+
+def _overlay(env: dict[str, str], prefix: Path) -> None:
+    """Apply the hooks of every package installed in `prefix`, as its setup.bash would."""
+    packages_dir = prefix / "share" / "colcon-core" / "packages"
+    names = sorted(p.name for p in packages_dir.iterdir()) if packages_dir.is_dir() else []
+    seen: set[Path] = set()
+    for name in names:
+        for action, variable, value in _dsv_actions(
+            prefix, prefix / "share" / name / "package.dsv", seen
+        ):
+            if action.startswith("prepend-non-duplicate"):
+                if action.endswith("if-exists") and not Path(value).exists():
+                    continue
+                env[variable] = _prepend(value, env.get(variable))
+            elif action == "set" or (action == "set-if-unset" and variable not in env):
+                env[variable] = value
+
+
+def workspace_env(base: Mapping[str, str] | None = None) -> dict[str, str]:
+    """Return `base` with the course workspace overlaid, as `source install/setup.bash` does."""
+    env = dict(os.environ if base is None else base)
+    install = WORKSPACE_INSTALL_DIR
+    env["AMENT_PREFIX_PATH"] = _prepend(str(install), env.get("AMENT_PREFIX_PATH"))
+    env["COLCON_PREFIX_PATH"] = _prepend(str(install), env.get("COLCON_PREFIX_PATH"))
+    _overlay(env, install)
+    env["PATH"] = _prepend(str(Path(sys.executable).parent), env.get("PATH"))
+    return env

@@ -1,0 +1,72 @@
+"""`python -m course_lib <command>`: the course's own utilities behind the Makefile."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+__all__ = ["main"]
+
+
+def _build(_args: argparse.Namespace) -> int:
+    from .workspace import build_workspace
+
+    return build_workspace()
+
+
+def _lab(args: argparse.Namespace) -> int:
+    from .lab import run_lab
+
+    return run_lab(args.extra)
+
+
+def _test(args: argparse.Namespace) -> int:
+    from .testing import run_tests
+
+    return run_tests(args.extra)
+
+
+def _notebooks(args: argparse.Namespace) -> int:
+    from .notebook_outputs import refresh_notebooks
+
+    return refresh_notebooks(args.extra)
+
+
+def _doctor(_args: argparse.Namespace) -> int:
+    from .doctor import report
+
+    print(report())
+    return 0
+
+
+def _stop(_args: argparse.Namespace) -> int:
+    from .doctor import stop_all
+
+    stopped = stop_all()
+    print(f"Stopped {len(stopped)} course process(es)." if stopped else "No course process runs.")
+    return 0
+
+
+COMMANDS = {
+    "build": (_build, "build the ROS workspace in rosject/ with colcon"),
+    "lab": (_lab, "start JupyterLab on the first lesson"),
+    "test": (_test, "run the whole test suite"),
+    "notebooks": (_notebooks, "re-execute the notebooks to refresh their stored outputs"),
+    "doctor": (_doctor, "say what is installed and which course processes run"),
+    "stop": (_stop, "stop every course process of this user"),
+}
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run one course command."""
+    parser = argparse.ArgumentParser(prog="python -m course_lib")
+    sub = parser.add_subparsers(dest="command", required=True)
+    for name, (func, summary) in COMMANDS.items():
+        sub.add_parser(name, help=summary).set_defaults(func=func)
+    args, extra = parser.parse_known_args(argv)
+    args.extra = extra  # passed through to jupyter lab or pytest
+    return int(args.func(args))
+
+
+if __name__ == "__main__":
+    sys.exit(main())

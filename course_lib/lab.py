@@ -1,0 +1,57 @@
+"""`make lab`: JupyterLab on lesson 1, in one ROS domain shared by kernels and terminals."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+from collections.abc import Sequence
+
+from .domain import lease_domain
+from .paths import NOTEBOOKS_DIR, REPO_ROOT, venv_bin_dir
+from .processes import ChildProcess, spawn
+from .session import session_env
+
+__all__ = ["FIRST_LESSON", "lab_argv", "run_lab"]
+
+FIRST_LESSON = "notebooks/01_setup_check.ipynb"
+
+
+def lab_argv(extra: Sequence[str] = ()) -> list[str]:
+    """Return the JupyterLab command line: loopback only, the first lesson open."""
+    first = FIRST_LESSON if (REPO_ROOT / FIRST_LESSON).exists() else str(NOTEBOOKS_DIR)
+    return [
+        str(venv_bin_dir() / "jupyter"),
+        "lab",
+        "--ServerApp.ip=127.0.0.1",
+        f"--ServerApp.root_dir={REPO_ROOT}",
+        *(["--allow-root"] if os.geteuid() == 0 else []),  # containers and CI run as root
+        *extra,
+        first,
+    ]
+
+
+def run_lab(extra: Sequence[str] = ()) -> int:
+    """Start the ros2 daemon and JupyterLab in a leased domain; stop both on Ctrl-C."""
+    lease = lease_domain()
+    env = session_env(lease.domain_id)
+    env["COURSE_LAB"] = "1"
+    print(f"ROS 2 course: ROS_DOMAIN_ID={lease.domain_id} for this JupyterLab and its terminals.")
+    children: list[ChildProcess] = []
+    with contextlib.suppress(ImportError):
+        from .ros2 import start_daemon
+
+        children.append(start_daemon(env))
+    signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop cleanly on SIGTERM too
+    lab = spawn(lab_argv(extra), name="jupyterlab", env=env, cwd=REPO_ROOT, capture=False)
+    children.append(lab)
+    try:
+        code = lab.wait()
+    except KeyboardInterrupt:
+        lab.send_signal(signal.SIGTERM)
+        code = lab.wait(10.0)
+    finally:
+        for child in reversed(children):
+            child.stop(timeout=5.0)
+        lease.release()
+    return code or 0

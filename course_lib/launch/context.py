@@ -1,0 +1,92 @@
+"""The launch context: configurations, locals and environment seen by actions."""
+
+from __future__ import annotations
+
+import os
+from types import SimpleNamespace
+from typing import Any
+
+__all__ = ["LaunchContext"]
+
+
+class LaunchContext:
+    """What actions read and change while a launch description is visited."""
+
+    def __init__(
+        self, *, argv: list[str] | None = None, noninteractive: bool = False, runtime: Any = None
+    ) -> None:
+        self.argv = list(argv or [])
+        self.noninteractive = noninteractive
+        self.runtime = runtime  # None when only describing (show-args, dry run)
+        self.launch_configurations: dict[str, str] = {}
+        self._config_stack: list[dict[str, str]] = []
+        self._locals_stack: list[dict[str, Any]] = [{}]
+        self.environment: dict[str, str] = dict(os.environ)
+        self._env_stack: list[dict[str, str]] = []
+        self.is_shutdown = False
+        self.node_names: list[str] = []
+        self.process_counter = 0
+        self.global_params: list[tuple[str, Any]] = []  # launch_ros SetParameter
+        self.planned_processes: list[Any] = []  # processes found when only describing
+        self.messages: list[tuple[str, str, str]] = []  # (logger, level, text) when describing
+
+    @property
+    def locals(self) -> SimpleNamespace:
+        """Return the locals of the current scope (file path, ros arguments, ...)."""
+        merged: dict[str, Any] = {}
+        for scope in self._locals_stack:
+            merged.update(scope)
+        return _Locals(merged)
+
+    def extend_locals(self, values: dict[str, Any]) -> None:
+        """Add values to the current scope's locals."""
+        self._locals_stack[-1].update(values)
+
+    def push_locals(self) -> None:
+        """Start a new scope of locals."""
+        self._locals_stack.append({})
+
+    def pop_locals(self) -> None:
+        """Drop the innermost scope of locals."""
+        if len(self._locals_stack) > 1:
+            self._locals_stack.pop()
+
+    def push_launch_configurations(self) -> None:
+        """Save launch configurations (a group scopes them)."""
+        self._config_stack.append(dict(self.launch_configurations))
+
+    def pop_launch_configurations(self) -> None:
+        """Restore the launch configurations saved last."""
+        self.launch_configurations = self._config_stack.pop()
+
+    def push_environment(self) -> None:
+        """Save the environment (a group scopes it)."""
+        self._env_stack.append(dict(self.environment))
+
+    def pop_environment(self) -> None:
+        """Restore the environment saved last."""
+        self.environment = self._env_stack.pop()
+
+    def log(self, logger: str, level: str, text: str) -> None:
+        """Log as launch does (`[LEVEL] [logger]: text`), or keep it when only describing."""
+        if self.runtime is not None:
+            self.runtime.log(logger, level, text)
+        else:
+            self.messages.append((logger, level, text))
+
+    def perform_substitution(self, substitution: Any) -> str:
+        """Perform one substitution in this context."""
+        return substitution.perform(self)
+
+
+class _Locals(SimpleNamespace):
+    """Locals readable as attributes and by key."""
+
+    def __init__(self, values: dict[str, Any]) -> None:
+        super().__init__(**values)
+
+    def __getitem__(self, key: str) -> Any:
+        return self.__dict__[key]
+
+    def __contains__(self, key: object) -> bool:
+        return key in self.__dict__

@@ -1,0 +1,274 @@
+"""Start child processes that never outlive their owner, and reap those of dead owners.
+
+Every child runs in its own process group with ``PR_SET_PDEATHSIG`` set, so the kernel
+kills it when the spawning thread dies, whatever the cause (SIGKILL included). Linux ties
+that signal to the *thread* that forked, so all children are forked from one long-lived
+spawner thread. Each child also carries ``COURSE_OWNER=<pid>:<start time>`` in its
+environment, which lets a later session find and kill what a crashed one left behind.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import ctypes
+import os
+import re
+import signal
+import subprocess
+import threading
+import time
+from collections import deque
+from collections.abc import Callable, Mapping, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+from .errors import ProcessStartError
+
+__all__ = [
+    "OWNER_ENV",
+    "ChildProcess",
+    "OutputLine",
+    "owner_tag",
+    "process_environ",
+    "reap_orphans",
+    "spawn",
+]
+
+OWNER_ENV = "COURSE_OWNER"
+_PR_SET_PDEATHSIG = 1
+_MAX_LINES = 5000
+_spawner = ThreadPoolExecutor(max_workers=1, thread_name_prefix="course-spawner")
+
+
+@dataclass(frozen=True)
+class OutputLine:
+    """One line a child printed, without its line ending."""
+
+    stream: str
+    text: str
+    time: float
+
+
+def _start_time(pid: int) -> str | None:
+    """Return the start time of live process `pid` (field 22 of /proc/<pid>/stat), or None."""
+    try:
+        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except (OSError, IndexError):
+        return None
+    return None if fields[0] in ("Z", "X") else fields[19]
+
+
+def owner_tag(pid: int | None = None) -> str:
+    """Return the tag that marks children of process `pid` (default: this process)."""
+    pid = os.getpid() if pid is None else pid
+    return f"{pid}:{_start_time(pid)}"
+
+
+def _owner_alive(tag: str) -> bool:
+    pid, _, started = tag.partition(":")
+    return pid.isdigit() and _start_time(int(pid)) == started
+
+
+def _die_with_parent(parent_pid: int) -> Callable[[], None]:
+    libc = ctypes.CDLL(None, use_errno=True)
+
+    def preexec() -> None:
+        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        if os.getppid() != parent_pid:  # the parent died before prctl took effect
+            os._exit(1)
+
+    return preexec
+
+
+class ChildProcess:
+    """A running child: its output (bounded), its exit status, and how to stop it."""
+
+    def __init__(self, popen: subprocess.Popen[bytes], name: str, argv: Sequence[str]) -> None:
+        self.name = name
+        self.argv = list(argv)
+        self._popen = popen
+        self._lines: deque[OutputLine] = deque(maxlen=_MAX_LINES)
+        self._listeners: list[Callable[[OutputLine], None]] = []
+        self._cond = threading.Condition()
+        self._readers = [
+            threading.Thread(target=self._read, args=(pipe, stream), daemon=True)
+            for pipe, stream in ((popen.stdout, "stdout"), (popen.stderr, "stderr"))
+            if pipe is not None
+        ]
+        for reader in self._readers:
+            reader.start()
+
+    def __repr__(self) -> str:
+        state = "running" if self.alive else f"exited {self.returncode}"
+        return f"<ChildProcess {self.name} pid={self.pid} {state}>"
+
+    @property
+    def pid(self) -> int:
+        return self._popen.pid
+
+    @property
+    def returncode(self) -> int | None:
+        return self._popen.poll()
+
+    @property
+    def alive(self) -> bool:
+        return self._popen.poll() is None
+
+    @property
+    def lines(self) -> list[OutputLine]:
+        with self._cond:
+            return list(self._lines)
+
+    def text(self, stream: str | None = None) -> str:
+        """Return what the child printed so far (one stream, or both interleaved)."""
+        return "".join(f"{ln.text}\n" for ln in self.lines if stream in (None, ln.stream))
+
+    def add_listener(self, listener: Callable[[OutputLine], None]) -> None:
+        with self._cond:
+            self._listeners.append(listener)
+
+    def remove_listener(self, listener: Callable[[OutputLine], None]) -> None:
+        with self._cond, contextlib.suppress(ValueError):
+            self._listeners.remove(listener)
+
+    def _read(self, pipe, stream: str) -> None:  # type: ignore[no-untyped-def]
+        for raw in iter(pipe.readline, b""):
+            line = OutputLine(stream, raw.decode("utf-8", "replace").rstrip("\r\n"), time.time())
+            with self._cond:
+                self._lines.append(line)
+                listeners = list(self._listeners)
+                self._cond.notify_all()
+            for listener in listeners:
+                with contextlib.suppress(Exception):
+                    listener(line)
+        pipe.close()
+        with self._cond:
+            self._cond.notify_all()
+
+    def wait_for_line(
+        self, match: str | Callable[[OutputLine], bool], timeout: float
+    ) -> OutputLine | None:
+        """Wait until a line matches a regex or predicate; None on timeout or exit."""
+        test = (
+            (lambda ln: re.search(match, ln.text) is not None) if isinstance(match, str) else match
+        )
+        deadline = time.monotonic() + timeout
+        seen = 0
+        with self._cond:
+            while True:
+                lines = list(self._lines)
+                for line in lines[seen:]:
+                    if test(line):
+                        return line
+                seen = len(lines)
+                remaining = deadline - time.monotonic()
+                if remaining <= 0 or (not self.alive and not self._readers_running()):
+                    return None
+                self._cond.wait(min(remaining, 0.1))
+
+    def _readers_running(self) -> bool:
+        return any(reader.is_alive() for reader in self._readers)
+
+    def wait(self, timeout: float | None = None) -> int | None:
+        """Wait for the child to exit and its output to be read; None on timeout."""
+        try:
+            code = self._popen.wait(timeout)
+        except subprocess.TimeoutExpired:
+            return None
+        for reader in self._readers:
+            reader.join(timeout=1.0)
+        return code
+
+    def send_signal(self, sig: int) -> None:
+        """Send `sig` to the child's whole process group."""
+        if self.alive:
+            with contextlib.suppress(ProcessLookupError, PermissionError):
+                os.killpg(self.pid, sig)
+
+    def stop(self, *, timeout: float = 5.0) -> int:
+        """Stop the child like Ctrl-C would, escalating to SIGTERM and SIGKILL; idempotent."""
+        for sig, grace in ((signal.SIGINT, timeout), (signal.SIGTERM, 2.0), (signal.SIGKILL, 2.0)):
+            if not self.alive:
+                break
+            self.send_signal(sig)
+            self.wait(grace)
+        code = self.wait(timeout=2.0)
+        with contextlib.suppress(ProcessLookupError, PermissionError):
+            os.killpg(self.pid, signal.SIGKILL)  # grandchildren left in the group
+        return code if code is not None else -signal.SIGKILL
+
+
+def spawn(
+    argv: Sequence[str],
+    *,
+    name: str,
+    env: Mapping[str, str] | None = None,
+    cwd: str | os.PathLike[str] | None = None,
+    new_session: bool = True,
+    merge_stderr: bool = False,
+    capture: bool = True,
+) -> ChildProcess:
+    """Start `argv` as a child that dies with this process and return its handle."""
+    child_env = dict(os.environ if env is None else env)
+    child_env[OWNER_ENV] = owner_tag()
+    child_env.setdefault("PYTHONUNBUFFERED", "1")
+    pipe = subprocess.PIPE if capture else None
+
+    def start() -> subprocess.Popen[bytes]:
+        return subprocess.Popen(
+            list(argv),
+            env=child_env,
+            cwd=cwd,
+            stdin=subprocess.DEVNULL if capture else None,
+            stdout=pipe,
+            stderr=(subprocess.STDOUT if merge_stderr else pipe) if capture else None,
+            start_new_session=new_session,
+            preexec_fn=_die_with_parent(os.getpid()),
+            close_fds=True,
+        )
+
+    try:
+        popen = _spawner.submit(start).result()
+    except OSError as exc:
+        raise ProcessStartError(
+            f"Could not start {name}: {exc.strerror or exc}",
+            hint=f"check that `{argv[0]}` exists and is executable (`make setup` rebuilds it).",
+        ) from exc
+    return ChildProcess(popen, name, argv)
+
+
+def process_environ(pid: int) -> dict[str, str]:
+    """Return the environment of process `pid` ({} if it cannot be read)."""
+    try:
+        raw = Path(f"/proc/{pid}/environ").read_bytes()
+    except OSError:
+        return {}
+    pairs = (item.partition(b"=") for item in raw.split(b"\0") if item)
+    return {k.decode(errors="replace"): v.decode(errors="replace") for k, _, v in pairs}
+
+
+def _orphans() -> list[int]:
+    me = os.getpid()
+    found = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit() and int(entry.name) != me:
+            tag = process_environ(int(entry.name)).get(OWNER_ENV)
+            if tag and not _owner_alive(tag):
+                found.append(int(entry.name))
+    return found
+
+
+def reap_orphans(*, rounds: int = 4) -> list[int]:
+    """Kill course processes whose owner is gone (and then theirs); return their PIDs."""
+    killed: list[int] = []
+    for _ in range(rounds):
+        batch = _orphans()
+        for pid in batch:
+            with contextlib.suppress(ProcessLookupError, PermissionError):
+                os.kill(pid, signal.SIGKILL)
+        if not batch:
+            break
+        killed += batch
+        time.sleep(0.02)  # let the kernel mark them dead before judging their children
+    return killed

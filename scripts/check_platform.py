@@ -1,0 +1,30 @@
+"""Stop early, in one sentence, on a machine the ROS 2 Jazzy wheels do not cover."""
+
+import platform
+import sys
+
+SUPPORTED = "Linux x86_64 with CPython 3.10, 3.11 or 3.12 (what the ROS 2 Jazzy wheels cover)"
+
+
+def main() -> int:
+    system, machine = platform.system(), platform.machine()
+    version = sys.version_info[:2]
+    problems = []
+    if system != "Linux" or machine not in ("x86_64", "AMD64"):
+        problems.append(f"this machine is {system} {machine}")
+    if not (3, 10) <= version <= (3, 12) or platform.python_implementation() != "CPython":
+        problems.append(
+            f"{sys.executable} is {platform.python_implementation()} {version[0]}.{version[1]}"
+        )
+    if problems:
+        print(
+            f"The course runs on {SUPPORTED}, but {' and '.join(problems)}.\n"
+            "Try: make lab PYTHON=python3.11 (any CPython 3.10-3.12 on Linux x86_64).",
+            file=sys.stderr,
+        )
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,100 @@
+"""`ros2 run` and `ros2 pkg` through the console command, against the course workspace."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from course_lib import ament
+from course_lib.errors import PackageNotFoundError
+
+REPO = Path(__file__).resolve().parents[3]
+pytestmark = pytest.mark.ros
+
+
+def _has_workspace() -> bool:
+    try:
+        return "param_vel" in ament.package_executables("parameter_tests", ament.workspace_env())
+    except PackageNotFoundError:
+        return False
+
+
+needs_workspace = pytest.mark.skipif(not _has_workspace(), reason="rosject not built")
+
+
+def _ros2(*args: str, **kwargs):  # type: ignore[no-untyped-def]
+    env = {**ament.workspace_env(), "PYTHONPATH": str(REPO)}
+    env.pop("ROS_DOMAIN_ID", None)
+    return subprocess.run(
+        [sys.executable, "-m", "course_lib.cli", *args],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=30,
+        check=False,
+        **kwargs,
+    )
+
+
+def test_run_missing_package_and_executable() -> None:
+    out = _ros2("run", "no_such_pkg", "param_vel")
+    assert (out.stdout, out.stderr, out.returncode) == ("", "Package 'no_such_pkg' not found\n", 1)
+    if _has_workspace():
+        out = _ros2("run", "parameter_tests", "no_such_exec")
+        assert (out.stdout, out.stderr, out.returncode) == ("", "No executable found\n", 1)
+
+
+@needs_workspace
+def test_pkg_executables_and_prefix() -> None:
+    assert _ros2("pkg", "executables", "parameter_tests").stdout == "parameter_tests param_vel\n"
+    prefix = _ros2("pkg", "prefix", "parameter_tests").stdout.strip()
+    assert Path(prefix) == ament.package_prefix("parameter_tests", ament.workspace_env())
+    assert _ros2("pkg", "prefix", "nope").stderr == "Package not found\n"
+
+
+@needs_workspace
+def test_run_interrupted_by_ctrl_c_prints_interrupt_and_exits_254() -> None:
+    # The golden tutorial node (no KeyboardInterrupt handling) runs through --prefix, so the
+    # test does not depend on how the workspace's own entry script was built.
+    node = REPO / "tests" / "golden" / "ros2" / "nodes" / "param_vel_node.py"
+    env = {
+        **ament.workspace_env(),
+        "PYTHONPATH": str(REPO),
+        "ROS_DOMAIN_ID": "45",
+        "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
+        "PYTHONUNBUFFERED": "1",
+    }
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "course_lib.cli",
+            "run",
+            "--prefix",
+            f"{sys.executable} {node}",
+            "parameter_tests",
+            "param_vel",
+            "--ros-args",
+            "-p",
+            "velocity:=0.1",
+        ],
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
+    try:
+        first = proc.stderr.readline()
+        assert "[param_vel_node]: Velocity parameter is: 0.100000" in first
+        os.killpg(proc.pid, signal.SIGINT)  # what Ctrl-C in a terminal does
+        stdout, _ = proc.communicate(timeout=20)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+    assert (stdout, proc.returncode) == ("[ros2run]: Interrupt\n", 254)

@@ -1,0 +1,69 @@
+"""XML/YAML launch files and the `$(...)` language, evaluated without running anything."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from course_lib.launch.context import LaunchContext
+from course_lib.launch.description import load_any_launch_file
+from course_lib.launch.frontend_substitutions import parse_substitution
+from course_lib.launch.substitutions import perform_substitutions
+
+FIXTURE = Path(__file__).resolve().parents[2] / "fixtures" / "launch_pkg"
+
+
+def _eval(text: str, **configs: str) -> str:
+    context = LaunchContext()
+    context.launch_configurations.update(configs)
+    return perform_substitutions(context, parse_substitution(text))
+
+
+def test_var_and_text_mix() -> None:
+    assert _eval("a $(var x) b", x="1") == "a 1 b"
+
+
+def test_var_default_quoted_with_nested_substitution() -> None:
+    assert _eval("$(var missing '$(var x)/c')", x="/p") == "/p/c"
+
+
+def test_unknown_substitution_is_named() -> None:
+    with pytest.raises(RuntimeError, match="Unknown substitution: nope"):
+        parse_substitution("$(nope a)")
+
+
+def test_missing_configuration_message() -> None:
+    with pytest.raises(RuntimeError, match="launch configuration 'x' does not exist"):
+        _eval("$(var x)")
+
+
+def _nodes(path: Path, **configs: str) -> list:
+    context = LaunchContext()
+    context.launch_configurations.update(configs)
+    pending = [load_any_launch_file(str(path))]
+    while pending:
+        entity = pending.pop(0)
+        context.push_locals()
+        pending = list(entity.visit(context) or []) + pending
+    return context.planned_processes
+
+
+def test_yaml_node_parameters(ament_fixture: Path) -> None:
+    (node,) = _nodes(FIXTURE / "launch" / "param_vel.launch.yaml")
+    assert node.spec.name == "param_vel-1"
+    assert node.node_name == "<node_namespace_unspecified>/param_vel_node"
+    assert node.parameter_sources[0].values == {"velocity": 0.2}
+    assert node.spec.output == "screen" and not node.spec.emulate_tty
+
+
+def test_xml_param_value_is_typed_like_launch_xml(ament_fixture: Path) -> None:
+    (node,) = _nodes(FIXTURE / "launch" / "param_vel.launch.xml", velocity="1")
+    assert node.parameter_sources[0].values == {"velocity": 1}  # an integer, as real XML gives
+
+
+def test_unknown_xml_tag_is_reported(tmp_path: Path) -> None:
+    path = tmp_path / "bad.launch.xml"
+    path.write_text("<launch><nod pkg='a' exec='b'/></launch>")
+    with pytest.raises(Exception, match="RuntimeError: Unrecognized entity of the type: nod"):
+        load_any_launch_file(str(path))
