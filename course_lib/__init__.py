@@ -1,6 +1,40 @@
-"""ROS 2 parameters, interactively: the library behind the course's notebooks."""
+"""ROS 2 parameters, interactively: the library behind the course's notebooks.
 
-from .errors import CourseError
-from .session import Session, get_session
+Names load on first use, so the `ros2` console command (which imports this package) starts
+fast, and importing it never imports rclpy or mujoco.
+"""
 
-__all__ = ["CourseError", "Session", "get_session"]
+from __future__ import annotations
+
+from importlib import import_module
+from typing import Any
+
+_EXPORTS = {
+    "CourseError": ".errors",
+    "Session": ".session",
+    "get_session": ".session",
+    "launch": ".launch",
+    "dry_run": ".launch",
+    "CommandOutput": ".ros2",
+    "ParamValue": ".ros2",
+    "SetResult": ".ros2",
+    "node_list": ".ros2",
+    "param_describe": ".ros2",
+    "param_dump": ".ros2",
+    "param_get": ".ros2",
+    "param_list": ".ros2",
+    "param_set": ".ros2",
+    "start_world": ".sim",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _EXPORTS:
+        raise AttributeError(f"module 'course_lib' has no attribute {name!r}")
+    return getattr(import_module(_EXPORTS[name], __name__), name)
+
+
+def __dir__() -> list[str]:
+    return __all__

@@ -31,6 +31,8 @@ GRAPH_SETTLE_S = 1.0
 YOUNG_CLIENT_S = 4.0
 SERVICE_WAIT_S = 5.0
 CALL_TIMEOUT_S = 10.0
+# First wait for a reply before re-sending (a reply normally takes about 1 ms).
+FIRST_ATTEMPT_S = 0.5
 _POLL_S = 0.02
 _VALUE_FIELDS = {
     ParameterType.PARAMETER_BOOL: "bool_value",
@@ -208,12 +210,28 @@ class RosClient:
             raise ServiceCallError(
                 f"Wait for service timed out waiting for parameter services for node {node_name}"
             )
-        try:
-            return self._wait_future(client.call_async(request), CALL_TIMEOUT_S)
-        except TimeoutError as exc:
-            raise ServiceCallError(
-                f"Exception while calling service of node '{node_name}': {exc}"
-            ) from None
+        return self._call_with_retries(client, node_name, request)
+
+    def _call_with_retries(self, client: Any, node_name: str, request: Any) -> Any:
+        """Call the service, re-sending with a doubling timeout while no reply comes."""
+        # A server that has just matched our request topic may not have matched our reply
+        # reader yet; DDS then drops its first reply. Re-sending is safe: get, list and
+        # describe read, and a repeated set writes the same value.
+        deadline = time.monotonic() + CALL_TIMEOUT_S
+        attempt_s = FIRST_ATTEMPT_S
+        while True:
+            future = client.call_async(request)
+            remaining = deadline - time.monotonic()
+            try:
+                return self._wait_future(future, min(attempt_s, max(remaining, 0.01)))
+            except TimeoutError:
+                client.remove_pending_request(future)
+                if time.monotonic() >= deadline:
+                    raise ServiceCallError(
+                        f"Exception while calling service of node '{node_name}': "
+                        f"no answer within {CALL_TIMEOUT_S:g} s"
+                    ) from None
+                attempt_s *= 2
 
     def list_parameters(self, node_name: str, prefixes: Sequence[str] = ()) -> list[str]:
         """Return the names of the node's parameters (optionally under `prefixes`)."""

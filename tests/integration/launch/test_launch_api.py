@@ -9,6 +9,7 @@ import pytest
 from rcl_interfaces.srv import GetParameters
 
 from course_lib.launch import dry_run, launch
+from course_lib.ros2.client import RosClient
 from course_lib.session import Session
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
@@ -18,16 +19,9 @@ def _get(session: Session, node: str, name: str) -> object:
     client = session.node.create_client(GetParameters, f"{node}/get_parameters")
     try:
         assert client.wait_for_service(timeout_sec=15.0), f"{node} did not come up"
-        reply = session.wait_future(client.call_async(GetParameters.Request(names=[name])), 5.0)
-        value = reply.values[0]
-        return {
-            1: value.bool_value,
-            2: value.integer_value,
-            3: value.double_value,
-            4: value.string_value,
-        }.get(value.type)
     finally:
         session.node.destroy_client(client)
+    return RosClient(session.node, session.wait_future).get_parameters(node, [name])[0].value
 
 
 @pytest.mark.parametrize(

@@ -1,0 +1,50 @@
+"""`make lab` stops at once, in one sentence, on a machine the Jazzy wheels do not cover."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+from types import ModuleType
+
+import pytest
+
+SCRIPT = Path(__file__).resolve().parents[3] / "scripts" / "check_platform.py"
+
+
+def _load() -> ModuleType:
+    spec = importlib.util.spec_from_file_location("check_platform", SCRIPT)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_this_machine_is_supported() -> None:
+    assert _load().main() == 0
+
+
+@pytest.mark.parametrize(
+    ("system", "machine", "version", "says"),
+    [
+        ("Darwin", "arm64", (3, 11), "this machine is Darwin arm64"),
+        ("Linux", "x86_64", (3, 13), "is CPython 3.13"),
+        ("Linux", "aarch64", (3, 9), "Linux aarch64 and"),
+    ],
+)
+def test_unsupported_platforms_get_one_clear_sentence(
+    monkeypatch: pytest.MonkeyPatch,
+    capsys: pytest.CaptureFixture[str],
+    system: str,
+    machine: str,
+    version: tuple[int, int],
+    says: str,
+) -> None:
+    module = _load()
+    monkeypatch.setattr(module.platform, "system", lambda: system)
+    monkeypatch.setattr(module.platform, "machine", lambda: machine)
+    monkeypatch.setattr(module.sys, "version_info", (*version, 0, "final", 0))
+    assert module.main() == 1
+    err = capsys.readouterr().err
+    assert err.startswith("The course runs on Linux x86_64 with CPython 3.10, 3.11 or 3.12")
+    assert says in err
+    assert "Try: make lab PYTHON=python3.11" in err
