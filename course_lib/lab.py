@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import signal
 from collections.abc import Sequence
@@ -26,9 +27,17 @@ def lab_argv(extra: Sequence[str] = ()) -> list[str]:
         "--ServerApp.ip=127.0.0.1",
         f"--ServerApp.root_dir={REPO_ROOT}",
         *(["--allow-root"] if os.geteuid() == 0 else []),  # containers and CI run as root
+        # A login shell would re-read /etc/profile and drop .venv/bin (and `ros2`) from PATH.
+        f"--ServerApp.terminado_settings={_terminal_settings()}",
         *extra,
         first,
     ]
+
+
+def _terminal_settings() -> str:
+    """Return terminado settings that start the user's shell as a plain interactive shell."""
+    shell = os.environ.get("SHELL") or "/bin/bash"
+    return json.dumps({"shell_command": [shell, "-i"]})
 
 
 def run_lab(extra: Sequence[str] = ()) -> int:

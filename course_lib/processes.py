@@ -84,13 +84,24 @@ def _die_with_parent(parent_pid: int) -> Callable[[], None]:
 class ChildProcess:
     """A running child: its output (bounded), its exit status, and how to stop it."""
 
-    def __init__(self, popen: subprocess.Popen[bytes], name: str, argv: Sequence[str]) -> None:
+    def __init__(
+        self,
+        popen: subprocess.Popen[bytes],
+        name: str,
+        argv: Sequence[str],
+        respawn: Callable[[], subprocess.Popen[bytes]] | None = None,
+    ) -> None:
         self.name = name
         self.argv = list(argv)
-        self._popen = popen
+        self._respawn = respawn
+        self._restart_hooks: list[Callable[[ChildProcess], None]] = []
         self._lines: deque[OutputLine] = deque(maxlen=_MAX_LINES)
         self._listeners: list[Callable[[OutputLine], None]] = []
         self._cond = threading.Condition()
+        self._attach(popen)
+
+    def _attach(self, popen: subprocess.Popen[bytes]) -> None:
+        self._popen = popen
         self._readers = [
             threading.Thread(target=self._read, args=(pipe, stream), daemon=True)
             for pipe, stream in ((popen.stdout, "stdout"), (popen.stderr, "stderr"))
@@ -113,7 +124,9 @@ class ChildProcess:
 
     @property
     def alive(self) -> bool:
-        return self._popen.poll() is None
+        # poll() says None while another thread waits on the child: ask /proc too (a zombie
+        # is dead), so a killed child never looks alive.
+        return self._popen.poll() is None and _start_time(self.pid) is not None
 
     @property
     def lines(self) -> list[OutputLine]:
@@ -198,6 +211,30 @@ class ChildProcess:
             os.killpg(self.pid, signal.SIGKILL)  # grandchildren left in the group
         return code if code is not None else -signal.SIGKILL
 
+    def add_restart_hook(self, hook: Callable[[ChildProcess], None]) -> None:
+        """Call `hook(self)` after each restart() (a session re-adopts its child this way)."""
+        self._restart_hooks.append(hook)
+
+    def restart(self, *, timeout: float = 5.0) -> ChildProcess:
+        """Stop the child if it still runs, then start the same command again in this handle.
+
+        Same argv, environment and folder (so a node comes back with its params file); the
+        pid changes and the output of the new run is appended to `lines`.
+        """
+        if self._respawn is None:
+            raise ProcessStartError(f"{self.name} cannot be restarted: it was not spawned here.")
+        self.stop(timeout=timeout)
+        for reader in self._readers:
+            reader.join(timeout=1.0)
+        try:
+            popen = self._respawn()
+        except OSError as exc:
+            raise ProcessStartError(f"Could not restart {self.name}: {exc}") from exc
+        self._attach(popen)
+        for hook in list(self._restart_hooks):
+            hook(self)
+        return self
+
 
 def spawn(
     argv: Sequence[str],
@@ -235,7 +272,7 @@ def spawn(
             f"Could not start {name}: {exc.strerror or exc}",
             hint=f"check that `{argv[0]}` exists and is executable (`make setup` rebuilds it).",
         ) from exc
-    return ChildProcess(popen, name, argv)
+    return ChildProcess(popen, name, argv, respawn=lambda: _spawner.submit(start).result())
 
 
 def process_environ(pid: int) -> dict[str, str]:

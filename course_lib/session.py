@@ -60,8 +60,10 @@ class Session:
         self._lease = lease_domain(base)
         self.domain_id = self._lease.domain_id
         self.env = session_env(self.domain_id, base)
-        # This process's own participant reads discovery settings from os.environ.
-        os.environ.update({k: self.env[k] for k in (*isolation_env(0), _PROFILE_ENV)})
+        # This process's own participant reads discovery settings from os.environ, and its
+        # shell commands (`!ros2 ...`) and launch files see the workspace as if sourced.
+        overlay = (*isolation_env(0), _PROFILE_ENV, "AMENT_PREFIX_PATH", "COLCON_PREFIX_PATH")
+        os.environ.update({k: self.env[k] for k in overlay if k in self.env})
         os.environ[DOMAIN_ENV] = os.environ[_SESSION_DOMAIN_ENV] = str(self.domain_id)
         os.environ.pop("ROS_LOCALHOST_ONLY", None)
         self._children: list[ChildProcess] = []
@@ -132,9 +134,16 @@ class Session:
         self._check_open()
         env = {**self.env, **(env_extra or {})}
         child = spawn(argv, name=name, env=env, cwd=cwd, merge_stderr=merge_stderr)
-        with self._lock:
-            self._children.append(child)
+        child.add_restart_hook(self._adopt)
+        self._adopt(child)
         return child
+
+    def _adopt(self, child: ChildProcess) -> None:
+        """Own `child` (again, after `child.restart()`), so that close() stops it."""
+        self._check_open()
+        with self._lock:
+            if child not in self._children:
+                self._children.append(child)
 
     def run(
         self,

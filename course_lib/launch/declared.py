@@ -98,10 +98,20 @@ def _literal(node: ast.AST) -> object:
         return None
 
 
+# Every rclpy node of Jazzy declares these itself (see `ros2 param list` of any node).
+RCLPY_BUILTINS = (
+    DeclaredParameter("start_type_description_service", "bool", True, "rclpy", 0),
+    DeclaredParameter("use_sim_time", "bool", False, "rclpy", 0),
+)
+
+
 def declared_parameters(executable: str) -> dict[str, DeclaredParameter]:
     """Return the parameters the executable's source declares, by name."""
     found: dict[str, DeclaredParameter] = {}
-    for source in node_sources(executable):
+    sources = node_sources(executable)
+    if sources:  # a node whose source we can read is an rclpy node
+        found.update({p.name: p for p in RCLPY_BUILTINS})
+    for source in sources:
         try:
             tree = ast.parse(source.read_text(), str(source))
         except (OSError, SyntaxError, ValueError):

@@ -56,11 +56,12 @@ class DryRunReport:
 
 def _describe(name: str, plan: NodePlan) -> str:
     declared = plan.declared.get(name)
-    where = (
-        f" (declared {declared.type} in {declared.file}, line {declared.line})"
-        if (declared)
-        else " (not declared in the node's source)"
-    )
+    if declared is None:
+        where = " (not declared in the node's source)"
+    elif declared.file == "rclpy":
+        where = f" (declared {declared.type} by rclpy for every node)"
+    else:
+        where = f" (declared {declared.type} in {declared.file}, line {declared.line})"
     if name in plan.values:
         value, origin = plan.values[name]
         return f"{name} = {value!r}  from {origin}{where}"

@@ -12,6 +12,7 @@ import pytest
 
 GOLDEN = Path(__file__).resolve().parents[2] / "golden" / "launch"
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
+_ROSOUT_RACE = b"Failed to publish log message to rosout: publisher's context is invalid"
 
 
 def _golden(case: str) -> tuple[bytes, bytes, int]:
@@ -37,6 +38,10 @@ def _normalize(data: bytes, prefix: Path) -> list[bytes]:
     data = data.replace(sysconfig.get_paths()["purelib"].encode(), b"<venv>")
     lines: list[bytes] = []
     for line in data.split(b"\n"):
+        # rclpy prints this when SIGINT lands during a log call of the node: a race of the
+        # node's own shutdown (real launch shows it too, sometimes), not launch's output.
+        if _ROSOUT_RACE in line:
+            continue
         if not lines or line != lines[-1]:
             lines.append(line)
     return lines
@@ -66,10 +71,10 @@ def test_launch_output_matches_golden(
     stdout, stderr, exit_code = _golden(case)
     ours, real = _normalize(run.stdout, fixture_prefix), _normalize(stdout, fixture_prefix)
     # The node's KeyboardInterrupt traceback depends on where in rclpy the SIGINT lands:
-    # compare its start (the node's frames) and end exactly, everything else line for line.
+    # compare its start (the node's own frame) and end exactly, the rest line for line.
     start, end = _traceback_span(real)
     _, ours_end = _traceback_span(ours)
-    assert ours[: start + 5] == real[: start + 5]
+    assert ours[: start + 3] == real[: start + 3]
     assert ours[ours_end:] == real[end:]
     assert run.stderr == stderr
     assert code == exit_code

@@ -76,9 +76,14 @@ def test_syntax_error_is_reported_like_launch(
         "parameter_tests", "syntax_error.launch.py", session=launch_session, env=launch_env
     )
     assert handle.wait(20.0) == 1
-    assert handle.output[2:5] == [
+    first = (
         "[ERROR] [launch]: Caught exception in launch (see debug for traceback): Caught "
-        "multiple exceptions when trying to load file of format [py]:",
+        "multiple exceptions when trying to load file of format [py]:"
+    )
+    # stdout and stderr are read by two threads: find the error block, don't count lines.
+    start = handle.output.index(first)
+    assert handle.output[start : start + 3] == [
+        first,
         " - SyntaxError: expected ':' (syntax_error.launch.py, line 4)",
         " - InvalidFrontendLaunchFileError: The launch file may have a syntax error, or its "
         "format is unknown",

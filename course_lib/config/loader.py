@@ -1,0 +1,213 @@
+"""Load an instructor's YAML file into frozen dataclasses, naming file, line and key on errors.
+
+Pure code (PyYAML only). A schema is a frozen dataclass whose fields are bool, int, float, str,
+`Literal[...]`, nested dataclasses, `tuple[X, ...]`, fixed tuples or `X | None`; limits come
+from `setting(...)` metadata and cross-field checks raise `SettingValueError` in `__post_init__`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import types
+import typing
+from pathlib import Path
+from typing import Any, Literal, TypeVar, Union
+
+import yaml
+
+from ..errors import ConfigError
+from ..paths import REPO_ROOT
+
+__all__ = ["SettingValueError", "load_settings", "parse_settings", "setting"]
+
+T = TypeVar("T")
+_NONE = type(None)
+
+
+class SettingValueError(ValueError):
+    """Raised by a schema's `__post_init__` to reject a value; names the field."""
+
+    def __init__(self, key: str, problem: str, hint: str = "") -> None:
+        super().__init__(f"{key}: {problem}")
+        self.key = key
+        self.problem = problem
+        self.hint = hint
+
+
+def setting(default: Any = dataclasses.MISSING, *, help: str = "", **limits: Any) -> Any:
+    """Declare a schema field with a help text and limits (gt, ge, lt, le, min_len, max_len)."""
+    meta = {"help": help, **limits}
+    if isinstance(default, (list, dict)):
+        raise TypeError("use a tuple for a sequence default")
+    return dataclasses.field(default=default, metadata=meta)
+
+
+def _display_path(path: str | Path) -> str:
+    try:
+        return str(Path(path).resolve().relative_to(REPO_ROOT))
+    except ValueError:
+        return str(path)
+
+
+class _Converter:
+    """Walk a composed YAML node tree against a schema, raising ConfigError on the first fault."""
+
+    def __init__(self, source: str) -> None:
+        self.source = source
+        self._constructor = yaml.SafeLoader("")
+
+    def fail(self, node: yaml.Node | None, key: str, problem: str, hint: str) -> ConfigError:
+        line = node.start_mark.line + 1 if node is not None else None
+        return ConfigError(self.source, line, key or "(top level)", problem, hint)
+
+    def scalar(self, node: yaml.Node) -> Any:
+        return self._constructor.construct_object(node, deep=True)
+
+    def convert(self, node: yaml.Node, hint_type: Any, key: str) -> Any:
+        origin = typing.get_origin(hint_type)
+        if origin in (Union, types.UnionType):
+            options = [a for a in typing.get_args(hint_type) if a is not _NONE]
+            if node.tag == "tag:yaml.org,2002:null":
+                return None
+            return self.convert(node, options[0], key)
+        if dataclasses.is_dataclass(hint_type):
+            return self.dataclass(node, hint_type, key)
+        if origin is tuple:
+            return self.sequence(node, typing.get_args(hint_type), key)
+        if origin is Literal:
+            return self.choice(node, typing.get_args(hint_type), key)
+        return self.plain(node, hint_type, key)
+
+    def plain(self, node: yaml.Node, kind: type, key: str) -> Any:
+        names = {bool: "true or false", int: "a whole number", float: "a number", str: "text"}
+        value = self.scalar(node) if isinstance(node, yaml.ScalarNode) else node
+        ok = isinstance(value, kind) and not (kind is int and isinstance(value, bool))
+        if kind is float and isinstance(value, int) and not isinstance(value, bool):
+            return float(value)
+        if not ok:
+            shown = value if isinstance(node, yaml.ScalarNode) else f"a {node.id}"
+            raise self.fail(
+                node,
+                key,
+                f"expected {names.get(kind, kind.__name__)}, got {shown!r}",
+                f"write {names.get(kind, kind.__name__)} for `{key}`.",
+            )
+        return value
+
+    def choice(self, node: yaml.Node, options: tuple[Any, ...], key: str) -> Any:
+        value = self.scalar(node) if isinstance(node, yaml.ScalarNode) else None
+        if value not in options:
+            valid = ", ".join(repr(o) for o in options)
+            raise self.fail(node, key, f"{value!r} is not one of {valid}", f"use one of {valid}.")
+        return value
+
+    def sequence(self, node: yaml.Node, args: tuple[Any, ...], key: str) -> tuple[Any, ...]:
+        if not isinstance(node, yaml.SequenceNode):
+            raise self.fail(node, key, "expected a list", f"write `{key}` as a YAML list [a, b].")
+        items = node.value
+        if len(args) == 2 and args[1] is Ellipsis:
+            kinds = [args[0]] * len(items)
+        else:
+            kinds = list(args)
+            if len(items) != len(kinds):
+                raise self.fail(
+                    node,
+                    key,
+                    f"expected {len(kinds)} values, got {len(items)}",
+                    f"write exactly {len(kinds)} values for `{key}`.",
+                )
+        pairs = enumerate(zip(items, kinds, strict=True))
+        return tuple(self.convert(n, k, f"{key}[{i}]") for i, (n, k) in pairs)
+
+    def dataclass(self, node: yaml.Node, schema: type[T], key: str) -> T:
+        if not isinstance(node, yaml.MappingNode):
+            raise self.fail(node, key, "expected a mapping of keys", "write `key: value` lines.")
+        fields = {f.name: f for f in dataclasses.fields(schema)}  # type: ignore[arg-type]
+        hints = typing.get_type_hints(schema)
+        values: dict[str, Any] = {}
+        lines: dict[str, yaml.Node] = {}
+        for key_node, value_node in node.value:
+            name = str(self.scalar(key_node))
+            full = f"{key}.{name}" if key else name
+            if name not in fields:
+                close = difflib.get_close_matches(name, fields, n=1, cutoff=0.5)
+                hint = f"did you mean `{close[0]}`? " if close else ""
+                raise self.fail(
+                    key_node, full, "unknown key", f"{hint}valid keys here: {', '.join(fields)}."
+                )
+            if name in values:
+                raise self.fail(key_node, full, "key given twice", "keep one of the two lines.")
+            values[name] = self.convert(value_node, hints[name], full)
+            lines[name] = key_node
+            self.check_limits(value_node, fields[name].metadata, values[name], full)
+        missing = [n for n, f in fields.items() if n not in values and _required(f)]
+        if missing:
+            raise self.fail(
+                node,
+                f"{key}.{missing[0]}" if key else missing[0],
+                "missing",
+                f"add `{missing[0]}:` here.",
+            )
+        try:
+            return schema(**values)
+        except SettingValueError as err:
+            full = f"{key}.{err.key}" if key else err.key
+            raise self.fail(lines.get(err.key, node), full, err.problem, err.hint) from None
+
+    def check_limits(self, node: yaml.Node, meta: Any, value: Any, key: str) -> None:
+        tests = {
+            "gt": (lambda v, b: v > b, "greater than"),
+            "ge": (lambda v, b: v >= b, "at least"),
+            "lt": (lambda v, b: v < b, "less than"),
+            "le": (lambda v, b: v <= b, "at most"),
+            "min_len": (lambda v, b: len(v) >= b, "of length at least"),
+            "max_len": (lambda v, b: len(v) <= b, "of length at most"),
+        }
+        for name, (test, words) in tests.items():
+            if name in meta and value is not None and not test(value, meta[name]):
+                shown = len(value) if name.endswith("_len") else value
+                raise self.fail(
+                    node, key, f"{shown!r} is out of range", f"use a value {words} {meta[name]}."
+                )
+
+
+def _required(field: dataclasses.Field[Any]) -> bool:
+    return field.default is dataclasses.MISSING and field.default_factory is dataclasses.MISSING
+
+
+def parse_settings(text: str, schema: type[T], *, source: str = "<string>") -> T:
+    """Parse YAML text into `schema`; raise ConfigError naming `source`, line and key."""
+    converter = _Converter(source)
+    try:
+        root = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.YAMLError as err:
+        mark = getattr(err, "problem_mark", None)
+        line = mark.line + 1 if mark is not None else None
+        problem = getattr(err, "problem", None) or str(err)
+        raise ConfigError(
+            source,
+            line,
+            "(syntax)",
+            f"not valid YAML: {problem}",
+            "check the indentation and the colons near that line.",
+        ) from None
+    if root is None:
+        root = yaml.MappingNode("tag:yaml.org,2002:map", [])
+    return converter.dataclass(root, schema, "")
+
+
+def load_settings(path: str | Path, schema: type[T]) -> T:
+    """Read the YAML file at `path` into `schema`; raise ConfigError on any fault."""
+    source = _display_path(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as err:
+        raise ConfigError(
+            source,
+            None,
+            "(file)",
+            f"cannot be read: {err.strerror}",
+            "check that the file exists under config/.",
+        ) from None
+    return parse_settings(text, schema, source=source)

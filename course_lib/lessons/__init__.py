@@ -1,0 +1,68 @@
+"""The lessons' one set-up line, `lesson = start(N)`, and what the notebooks call after it.
+
+Every notebook's first cell: `from course_lib.lessons import start; lesson = start(7)`.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+from .lesson import TITLES, Lesson
+from .report import Check, SelfCheck
+from .settings import CourseSettings, load_course_settings
+
+__all__ = ["TITLES", "Check", "CourseSettings", "Lesson", "SelfCheck", "current", "start"]
+
+_lessons: dict[int, Lesson] = {}
+
+
+def _prepare_ipython() -> None:
+    """Load `%ros2` and show course errors as messages, not tracebacks (no-op outside IPython)."""
+    try:
+        from IPython import get_ipython
+    except ImportError:
+        return
+    shell = get_ipython()
+    if shell is None:
+        return
+    shell.extension_manager.load_extension("course_lib.ros2.magics")
+    from ..errors import CourseError
+    from .errors import show_course_error
+
+    shell.set_custom_exc((CourseError,), show_course_error)
+
+
+def start(number: int, *, settings_path: str | None = None) -> Lesson:
+    """Start (or restart) lesson `number`: session, `%ros2`, settings; safe to run again.
+
+    Re-running stops the nodes the lesson started and puts the robot back at its start pose
+    when the world runs, so the lesson starts over from a clean state.
+    """
+    from .. import ament
+    from ..session import get_session
+
+    if number not in TITLES:
+        raise ValueError(f"there are lessons 1 to {max(TITLES)}, not {number}")
+    settings = load_course_settings(settings_path)  # a ConfigError names file, line and key
+    session = get_session()
+    # Like `source install/setup.bash` in the learner's terminal: ament lookups in this kernel.
+    os.environ["AMENT_PREFIX_PATH"] = ament.workspace_env()["AMENT_PREFIX_PATH"]
+    _prepare_ipython()
+    previous = _lessons.get(number)
+    lesson = Lesson(number, session, settings)
+    if previous is not None and previous.session is session:
+        previous.stop_nodes()
+        lesson._world = previous._world
+        if lesson._world is not None and lesson._world.alive:
+            lesson._world.drive(0.0, 0.0)
+            lesson._world.reset()
+    _lessons[number] = lesson
+    print(f"Lesson {number} · {lesson.title}")
+    print("Ready: your own ROS 2 session is running and `%ros2` works in this notebook.")
+    return lesson
+
+
+def current(number: int) -> Any:
+    """Return lesson `number` if it was started in this kernel, else None."""
+    return _lessons.get(number)

@@ -1,0 +1,241 @@
+"""Each lesson's self-check: look at the real nodes, files and robot, say what passed."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from typing import Any
+
+import yaml
+
+from ..paths import ROSJECT_DIR
+from .report import Check, check
+
+__all__ = ["run_checks"]
+
+TUTORIAL_YAML = ROSJECT_DIR / "parameter_tests" / "config" / "param_vel_node.yaml"
+NODE_SOURCE = ROSJECT_DIR / "parameter_tests" / "parameter_tests" / "parameter_tests_node.py"
+
+
+def _nodes() -> list[str]:
+    from ..ros2 import api
+
+    return api.node_list()
+
+
+def _velocity(node: str = "/param_vel_node") -> float | None:
+    from ..ros2 import api
+
+    try:
+        return api.param_get(node, "velocity").value
+    except Exception:
+        return None
+
+
+def _lesson_1(lesson: Any) -> list[Check]:
+    from .. import ament
+    from .environment import versions
+
+    found = versions()
+    exes = ament.package_executables("parameter_tests", lesson.package_env())
+    return [
+        check("ROS 2 Jazzy's rclpy is installed", found["ROS 2 distro"] == "jazzy"),
+        check(
+            "MuJoCo and meshcat are installed",
+            "missing" not in (found["MuJoCo"], found["meshcat"]),
+            "run `make setup` in a terminal, then restart the kernel.",
+        ),
+        check(
+            "your session talks ROS 2 in its own domain",
+            not lesson.session.closed,
+            "run the first cell again.",
+        ),
+        check(
+            "the workspace is built: parameter_tests has param_vel",
+            "param_vel" in exes,
+            "run `make setup` in a terminal (it builds rosject/ with colcon).",
+        ),
+    ]
+
+
+def _lesson_2(lesson: Any) -> list[Check]:
+    return [
+        check(
+            "param_vel_node is gone, and its parameters with it",
+            "/param_vel_node" not in _nodes(),
+            'run the cell with `lesson.stop("param_vel")`.',
+        ),
+    ]
+
+
+def _lesson_3(lesson: Any) -> list[Check]:
+    from ..ros2 import api
+
+    alive = lesson._world is not None and lesson._world.alive
+    topics = {t.name for t in api.topic_list()} if alive else set()
+    return [
+        check("the simulation is running", alive, "run the cell with `lesson.world()`."),
+        check(
+            "the robot's topics /cmd_vel, /odom and /scan exist",
+            {"/cmd_vel", "/odom", "/scan"} <= topics,
+            "start the world, then list topics again.",
+        ),
+    ]
+
+
+def _lesson_4(lesson: Any) -> list[Check]:
+    from .. import ament
+    from ..launch.declared import declared_parameters
+
+    exe = ament.find_executable("parameter_tests", "param_vel", lesson.package_env())
+    declared = declared_parameters(str(exe))
+    velocity = declared.get("velocity")
+    source = NODE_SOURCE.read_text(encoding="utf-8")
+    return [
+        check(
+            "the node declares `velocity` as a double, default 0.0",
+            velocity is not None and velocity.type == "double" and velocity.default == 0.0,
+        ),
+        check("a 0.1 s timer publishes it", re.search(r"create_timer\(0\.1,", source) is not None),
+    ]
+
+
+def _lesson_5(lesson: Any) -> list[Check]:
+    from ..ros2 import api
+
+    running = "/param_vel_node" in _nodes()
+    speed = api.topic_echo_once("/cmd_vel").linear.x if running else None
+    return [
+        check("param_vel_node is running", running, "run the `%ros2 run` cell again."),
+        check(
+            "it publishes its velocity (0.0) on /cmd_vel",
+            speed == 0.0,
+            "is the node running? `%ros2 node list`",
+        ),
+    ]
+
+
+def _lesson_6(lesson: Any) -> list[Check]:
+    return [
+        check(
+            "param_vel_node answers: velocity is 0.0",
+            _velocity() == 0.0,
+            "start it with `%ros2 run parameter_tests param_vel`.",
+        ),
+    ]
+
+
+def _lesson_7(lesson: Any) -> list[Check]:
+    target = lesson.velocity
+    top = lesson.state.get("top_speed", 0.0)
+    return [
+        check(
+            f"the robot drove at {target:g} m/s (measured on /odom)",
+            abs(top - target) < 0.02,
+            f"set velocity to {target:g}, then run the cell that waits in simulated time.",
+        ),
+        check(
+            "velocity is back to 0.0 and the robot stopped",
+            _velocity() == 0.0 and lesson.state.get("stopped", False),
+            "`%ros2 param set /param_vel_node velocity 0.0`, then the cell after it.",
+        ),
+    ]
+
+
+def _lesson_8(lesson: Any) -> list[Check]:
+    from ..ros2 import api
+
+    try:
+        data = yaml.safe_load(TUTORIAL_YAML.read_text(encoding="utf-8"))
+        value = data["/param_vel_node"]["ros__parameters"]["velocity"]
+    except (OSError, yaml.YAMLError, KeyError, TypeError):
+        data, value = None, None
+    live = api.ros2("param dump /param_vel_node").stdout
+    return [
+        check(
+            "config/param_vel_node.yaml holds /param_vel_node's ros__parameters",
+            isinstance(value, float),
+            "run the cell that redirects the dump into the file.",
+        ),
+        check(
+            "the file is exactly what `ros2 param dump` prints now",
+            live == TUTORIAL_YAML.read_text(encoding="utf-8"),
+            "dump again into the file.",
+        ),
+    ]
+
+
+def _lesson_9(lesson: Any) -> list[Check]:
+    from ..launch import dry_run
+
+    path = lesson.learner_file("param_vel_node.yaml")
+    try:
+        value = yaml.safe_load(path.read_text())["/param_vel_node"]["ros__parameters"]["velocity"]
+    except (OSError, yaml.YAMLError, KeyError, TypeError):
+        value = None
+    return [
+        check(
+            "your params file sets velocity: 0.3 (a double)",
+            value == 0.3 and type(value) is float,
+            "run the cells that copy and edit the file.",
+        ),
+        check(
+            "a launch with it would start param_vel_node with velocity 0.3",
+            value == 0.3 and _planned_velocity(dry_run, path) == 0.3,
+            "run the cells that copy and edit the file.",
+        ),
+    ]
+
+
+def _planned_velocity(dry_run: Any, path: Any) -> Any:
+    try:
+        report = dry_run(
+            "parameter_tests", "test_parameters_file.launch.py", f"params_file:={path}"
+        )
+    except Exception:
+        return None
+    return report.nodes[0].values.get("velocity", (None,))[0] if report.nodes else None
+
+
+def _lesson_10(lesson: Any) -> list[Check]:
+    seen = lesson.state.get("launch_velocities", [])
+    return [
+        check("the Python launch file started param_vel_node with velocity 0.2", 0.2 in seen),
+        check(
+            "every launch was stopped (no param_vel_node left)",
+            "/param_vel_node" not in _nodes(),
+            "run the cells that call `.stop()`.",
+        ),
+    ]
+
+
+def _lesson_11(lesson: Any) -> list[Check]:
+    from ..ros2 import api
+
+    rejected = api.param_set("/descriptor_vel_node", "velocity", 0.3)
+    read_only = api.param_set("/descriptor_vel_node", "max_travel", 9.0)
+    saved = lesson.state.get("saved_params")
+    return [
+        check("the range refuses velocity 0.3 (max 0.26)", not rejected.successful),
+        check("max_travel is read-only", not read_only.successful),
+        check(
+            "the panel saved a params file ROS can load",
+            saved is not None and saved.exists(),
+            "press the panel's save button (or run `panel.save(...)`).",
+        ),
+        check(
+            "the travel exercise passed",
+            lesson.state.get("exercise_passed", False),
+            "change the two numbers of the exercise cell and run it and the check again.",
+        ),
+    ]
+
+
+CHECKS: dict[int, Callable[[Any], list[Check]]] = {
+    n: globals()[f"_lesson_{n}"] for n in range(1, 12)
+}
+
+
+def run_checks(lesson: Any) -> list[Check]:
+    """Return lesson `lesson.number`'s checks, run now."""
+    return CHECKS[lesson.number](lesson)

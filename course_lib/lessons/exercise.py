@@ -1,0 +1,87 @@
+"""Lesson 11's exercise, checked from the robot's actual motion on /odom (simulated time)."""
+
+from __future__ import annotations
+
+import contextlib
+import math
+from typing import Any
+
+from ..errors import CourseError
+from .files import Text
+from .judging import TravelAttempt, Verdict, judge_travel
+
+__all__ = ["TravelExercise"]
+
+NODE = "/descriptor_vel_node"
+
+
+class TravelExercise:
+    """'Travel target_m and stop, with parameters only': arm, let the learner act, check."""
+
+    def __init__(self, lesson: Any) -> None:
+        self.lesson = lesson
+        self.settings = lesson.settings.travel_exercise
+        self.attempts: list[Verdict] = []
+        self._start: Any = None
+
+    def arm(self) -> Text:
+        """Stop the robot, put it back at its start pose and remember where it stands."""
+        from ..ros2 import api
+
+        world = self.lesson.current_world
+        for name in ("velocity", "travel_time"):
+            result = api.param_set(NODE, name, 0.0)
+            if not result.successful:
+                raise CourseError(f"Could not reset {name}: {result.reason}")
+        world.reset()
+        self._start = world.odom()
+        return Text(
+            f"Robot at its start pose, {NODE} at rest. Task: travel "
+            f"{self.settings.target_m:.2f} m (± {self.settings.tolerance_m * 100:g} cm) and stop, "
+            "using parameters only."
+        )
+
+    def _measure(self) -> TravelAttempt:
+        world = self.lesson.current_world
+        start = self._start
+        t0 = start.time_s
+
+        def moved(r: Any) -> bool:
+            return math.hypot(r.pose.x - start.pose.x, r.pose.y - start.pose.y) > 0.02
+
+        with contextlib.suppress(TimeoutError):
+            world.wait_for_odom(lambda r: moved(r) or r.time_s > t0 + 3.0, 30.0)
+        now = world.odom()
+        if not moved(now):
+            return TravelAttempt(False, False, 0.0)
+        limit = t0 + self.settings.timeout_s
+        still_since: list[float] = []
+
+        def at_rest(r: Any) -> bool:
+            if abs(r.linear_mps) >= 0.003:
+                still_since.clear()
+                return r.time_s > limit
+            still_since.append(r.time_s)
+            return r.time_s - still_since[0] >= 0.3 or r.time_s > limit
+
+        end = world.wait_for_odom(at_rest, self.settings.timeout_s * 3)
+        stopped = abs(end.linear_mps) < 0.003
+        dist = math.hypot(end.pose.x - start.pose.x, end.pose.y - start.pose.y)
+        return TravelAttempt(True, stopped, dist)
+
+    def check(self) -> Verdict:
+        """Judge the robot's motion since `arm()`, then re-arm for the next attempt."""
+        if self._start is None:
+            raise CourseError("The exercise is not armed.", hint="run `travel.arm()` first.")
+        attempt = self._measure()
+        verdict = judge_travel(
+            attempt,
+            target_m=self.settings.target_m,
+            tolerance_m=self.settings.tolerance_m,
+            number=len(self.attempts) + 1,
+            show_hints=self.lesson.settings.show_hints,
+        )
+        self.attempts.append(verdict)
+        self.lesson.state["exercise_passed"] = any(v.passed for v in self.attempts)
+        self.arm()
+        return verdict

@@ -1,0 +1,105 @@
+"""Files the lessons show and write: sources with line numbers, atomic writes, learner files."""
+
+from __future__ import annotations
+
+import difflib
+import os
+import tempfile
+from pathlib import Path
+
+from ..paths import NOTEBOOKS_DIR, REPO_ROOT
+
+__all__ = [
+    "LEARNER_DIR",
+    "FileView",
+    "atomic_write",
+    "diff_text",
+    "display_path",
+    "numbered",
+]
+
+# Gitignored: what lessons write for the learner (edited params files, the panel's saves).
+LEARNER_DIR = NOTEBOOKS_DIR / "my_files"
+
+
+def display_path(path: str | os.PathLike[str]) -> str:
+    """Return `path` as the learner would type it: relative to the repository when inside it."""
+    resolved = Path(path).resolve()
+    for base in (NOTEBOOKS_DIR, REPO_ROOT):
+        try:
+            rel = resolved.relative_to(base)
+        except ValueError:
+            continue
+        return str(rel) if base == NOTEBOOKS_DIR else f"../{rel}"
+    return str(path)
+
+
+def atomic_write(path: str | os.PathLike[str], text: str) -> Path:
+    """Write `text` to `path` through a temporary file and a rename: never a half-written file."""
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as handle:
+            handle.write(text)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, target)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return target
+
+
+def numbered(text: str, first: int = 1, marks: set[int] | None = None) -> str:
+    """Return `text` with line numbers (`>` marks the lines in `marks`)."""
+    lines = text.splitlines()
+    width = len(str(first + len(lines) - 1))
+    marks = marks or set()
+    out = [
+        f"{'>' if n in marks else ' '} {n:>{width}} | {line}".rstrip()
+        for n, line in enumerate(lines, start=first)
+    ]
+    return "\n".join(out) + "\n"
+
+
+def diff_text(before: str, after: str, name: str) -> str:
+    """Return a unified diff of two versions of a file (what `git diff` shows)."""
+    lines = difflib.unified_diff(
+        before.splitlines(keepends=True),
+        after.splitlines(keepends=True),
+        f"a/{name}",
+        f"b/{name}",
+    )
+    return "".join(lines)
+
+
+class FileView:
+    """A file's text shown in a notebook: plain text for nbval, highlighted HTML for the eye."""
+
+    def __init__(self, title: str, text: str, language: str = "") -> None:
+        self.title = title
+        self.body = text
+        self.language = language
+
+    def __repr__(self) -> str:
+        return f"# {self.title}\n{self.body}"
+
+    def _repr_html_(self) -> str:
+        import html
+
+        return (
+            f'<div style="font-family:monospace;color:#555">{html.escape(self.title)}</div>'
+            f'<pre style="margin:0;padding:6px;background:#f6f8fa">{html.escape(self.body)}</pre>'
+        )
+
+
+class Text:
+    """Plain text shown as is in a notebook cell (no quotes, real line breaks)."""
+
+    def __init__(self, text: str) -> None:
+        self.text = text if text.endswith("\n") or not text else text + "\n"
+
+    def __repr__(self) -> str:
+        return self.text

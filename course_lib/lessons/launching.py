@@ -1,0 +1,46 @@
+"""Lesson 10's launches: start one, show its first lines as a terminal would, stop it."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..errors import CourseError
+from .files import Text
+
+__all__ = ["LaunchRun", "start_launch"]
+
+
+class LaunchRun:
+    """A running `ros2 launch` started by a lesson."""
+
+    def __init__(self, handle: Any, command: str, first_lines: list[str]) -> None:
+        self.handle = handle
+        self.command = command
+        self.first_lines = first_lines
+
+    def __repr__(self) -> str:
+        return "".join(f"{line}\n" for line in [f"$ {self.command}", *self.first_lines])
+
+    def stop(self) -> Text:
+        """Stop the launch as Ctrl-C does; launch stops its nodes first."""
+        code = self.handle.stop()
+        return Text(f"ros2 launch stopped (Ctrl-C), exit code {code}.")
+
+
+def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 4) -> LaunchRun:
+    """Start `ros2 launch package file args`; wait for the node's first log line."""
+    from ..launch import launch
+    from ..ros2 import api
+
+    handle = launch(package, file, *args, session=lesson.session)
+    command = " ".join(["ros2", "launch", package, file, *args])
+    if handle.wait_for(r"Velocity parameter is", timeout=15.0) is None:
+        tail = "\n".join(handle.output[-8:])
+        handle.stop()
+        raise CourseError(
+            f"The launch did not start its node.\n{tail}", hint="read the lines above."
+        )
+    lesson.state.setdefault("launches", []).append(handle)
+    value = api.param_get("/param_vel_node", "velocity").value
+    lesson.state.setdefault("launch_velocities", []).append(value)
+    return LaunchRun(handle, command, handle.output[:lines])

@@ -1,0 +1,303 @@
+"""The lesson object every notebook makes in its first cell: `lesson = start(7)`.
+
+It holds the session, the instructor's settings and the helpers the lessons call: start the
+world, run and stop nodes, show their log lines, show and edit files, and the self-check.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shlex
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+from .. import ament
+from ..errors import CourseError
+from ..paths import REPO_ROOT
+from ..processes import ChildProcess
+from . import files
+from .report import SelfCheck
+from .settings import CourseSettings
+
+__all__ = ["TITLES", "Lesson", "LogLines"]
+
+TITLES = {
+    1: "Setup check",
+    2: "Key points: parameters live in nodes",
+    3: "The simulation",
+    4: "The parameter_tests package",
+    5: "Run the node",
+    6: "Check parameters",
+    7: "Move the robot with a parameter",
+    8: "Dump parameters",
+    9: "Load a YAML file at start-up",
+    10: "Launch files",
+    11: "Beyond the tutorial",
+}
+RUN_PREFIX = "[ros2run]:"
+_RCLPY_OWN = re.compile(r"'(use_sim_time|start_type_description_service)' .* is not declared")
+
+
+class LogLines:
+    """Log lines of a node, shown as its terminal shows them."""
+
+    def __init__(self, lines: list[str]) -> None:
+        self.lines = lines
+
+    def __repr__(self) -> str:
+        return "".join(f"{line}\n" for line in self.lines)
+
+
+class Lesson:
+    """One lesson's state: session, settings, the world and the nodes it started."""
+
+    def __init__(self, number: int, session: Any, settings: CourseSettings) -> None:
+        self.number = number
+        self.title = TITLES[number]
+        self.session = session
+        self.settings = settings
+        self.started: dict[str, ChildProcess] = {}
+        self.state: dict[str, Any] = {}
+        self._world: Any = None
+        self._lock = threading.Lock()
+
+    def __repr__(self) -> str:
+        return f"Lesson {self.number} · {self.title}"
+
+    @property
+    def velocity(self) -> float:
+        """Return the instructor's default velocity in m/s (config/course.yaml)."""
+        return self.settings.default_velocity_mps
+
+    # --- the world -------------------------------------------------------------------------
+    def world(self, *, show: bool = True, config: str | None = None) -> Any:
+        """Start the simulated world (or reuse it), put the robot at its start pose, show it."""
+        from ..sim import start_world
+
+        path = str(REPO_ROOT / "config" / config) if config else None
+        world = start_world(self.session, show=show, config=path)  # shows the 3D view
+        world.drive(0.0, 0.0)
+        world.reset()
+        self._world = world
+        return world
+
+    @property
+    def current_world(self) -> Any:
+        """Return the running world; raise a CourseError that says how to start it."""
+        if self._world is None or not self._world.alive:
+            raise CourseError(
+                "The simulation is not running in this lesson.",
+                hint="run the cell with `lesson.world()` first.",
+            )
+        return self._world
+
+    # --- nodes -------------------------------------------------------------------------------
+    def node(self, name: str) -> ChildProcess:
+        """Return the latest process of executable `name` started in this session."""
+        found = [c for c in self.session.children if c.name == name]
+        if found:
+            self.started[name] = found[-1]
+        if name not in self.started:
+            raise CourseError(
+                f"No process '{name}' was started in this lesson.",
+                hint=f"run its `%ros2 run ... {name}` cell first.",
+            )
+        return self.started[name]
+
+    def stop_nodes(self) -> None:
+        """Stop every node this session started, except the simulation and its 3D view."""
+        keep = set()
+        if self._world is not None:
+            keep.add(id(self._world.process))
+        for child in self.session.children:
+            if id(child) not in keep and child.name not in ("mujoco_sim", "meshcat-server"):
+                child.stop()
+
+    def run(self, package: str, executable: str, *args: str, timeout: float = 10.0) -> LogLines:
+        """Start a node like `ros2 run`; show its first log line, or how it failed."""
+        command = " ".join(shlex.quote(a) for a in ("ros2", "run", package, executable, *args))
+        child = self.session.run(package, executable, *args, cwd=os.getcwd())
+        self.started[executable] = child
+        first = child.wait_for_line(lambda line: line.text.startswith("["), timeout)
+        if first is not None and child.alive:
+            return LogLines([f"$ {command}", first.text])
+        code = child.wait(timeout)
+        last = [ln.text for ln in child.lines if ln.text.strip()][-1:]
+        return LogLines(
+            [f"$ {command}", *last, f"{RUN_PREFIX} Process exited with failure {code}"]
+        )
+
+    def log_lines(self, name: str, count: int = 3, timeout: float = 10.0) -> LogLines:
+        """Wait for the next `count` log lines of node process `name` and return them."""
+        child = self.node(name)
+        start = len(child.lines)
+        deadline = time.monotonic() + timeout
+        while len(child.lines) < start + count and time.monotonic() < deadline:
+            if child.wait_for_line(lambda _line: True, 0.5) is None and not child.alive:
+                break
+        return LogLines([ln.text for ln in child.lines[start : start + count]])
+
+    def stop(self, name: str) -> files.Text:
+        """Stop node process `name` as Ctrl-C in its terminal does; say how it ended."""
+        child = self.node(name)
+        code = child.stop()
+        return files.Text(f"{name} stopped (Ctrl-C), exit code {code}.")
+
+    def exit_report(self, name: str, timeout: float = 10.0) -> LogLines:
+        """Wait for node process `name` to end; return its last line and exit code."""
+        child = self.node(name)
+        code = child.wait(timeout)
+        if code is None:
+            return LogLines([f"{name} is still running."])
+        last = [ln.text for ln in child.lines if ln.text.strip()][-1:]
+        return LogLines([*last, f"{RUN_PREFIX} Process exited with failure {code}"])
+
+    # --- files -------------------------------------------------------------------------------
+    def show_file(self, path: str | os.PathLike[str], marks: tuple[int, ...] = ()) -> Any:
+        """Show a file with line numbers (`marks`: lines to point at)."""
+        text = Path(path).read_text(encoding="utf-8")
+        body = files.numbered(text, marks=set(marks)) if marks else text
+        return files.FileView(files.display_path(path), body)
+
+    def package_file(self, package: str, relpath: str) -> Path:
+        """Return the source path of a file of a package in rosject/ (not the installed copy)."""
+        from ..paths import ROSJECT_DIR
+
+        path = ROSJECT_DIR / package / relpath
+        if not path.exists():
+            raise CourseError(f"{package} has no file {relpath}", hint="check the name.")
+        return path
+
+    def show_source(self, package: str, relpath: str, *, find: tuple[str, ...] = ()) -> Any:
+        """Show a package file from rosject/, marking the lines that contain any of `find`."""
+        path = self.package_file(package, relpath)
+        lines = path.read_text(encoding="utf-8").splitlines()
+        marks = tuple(n for n, line in enumerate(lines, 1) if any(f in line for f in find))
+        return self.show_file(path, marks)
+
+    def learner_file(self, name: str) -> Path:
+        """Return the path of a file the learner owns (in notebooks/my_files/, not in git)."""
+        return files.LEARNER_DIR / name
+
+    def ros2_to_file(self, command: str, path: str | os.PathLike[str]) -> files.Text:
+        """Run `ros2 <command> > path` (stdout into the file, atomically); show the line."""
+        from ..ros2.api import ros2
+
+        result = ros2(command)
+        if not result.ok:
+            raise CourseError(result.text.strip(), hint="is the node running? `%ros2 node list`")
+        files.atomic_write(path, result.stdout)
+        return files.Text(f"$ ros2 {command} > {files.display_path(path)}")
+
+    def copy_file(self, source: str | os.PathLike[str], name: str) -> Path:
+        """Copy a file into the learner's folder as `name`; return the new path."""
+        text = Path(source).read_text(encoding="utf-8")
+        return files.atomic_write(self.learner_file(name), text)
+
+    def edit_file(self, path: str | os.PathLike[str], old: str, new: str) -> files.Text:
+        """Replace `old` by `new` in a file (as an editor would) and return the diff."""
+        before = Path(path).read_text(encoding="utf-8")
+        if old not in before:
+            raise CourseError(
+                f"{files.display_path(path)} has no text {old!r}",
+                hint="show the file and copy the exact line to change.",
+            )
+        files.atomic_write(path, before.replace(old, new, 1))
+        return files.Text(
+            files.diff_text(before, before.replace(old, new, 1), files.display_path(path))
+        )
+
+    # --- self-check ----------------------------------------------------------------------------
+    def self_check(self) -> SelfCheck:
+        """Run this lesson's self-check: what passed, and what to try for what did not."""
+        from .checks import run_checks
+
+        return SelfCheck.of(self.number, run_checks(self))
+
+    def package_env(self) -> dict[str, str]:
+        """Return the session's environment with the workspace overlay (for launch, ament)."""
+        return ament.workspace_env(self.session.env)
+
+    # --- lesson-specific tools (thin doors onto their modules) --------------------------------
+    def where(self) -> files.Text:
+        """Say where the robot is and how fast it goes (from /odom)."""
+        import math
+
+        reading = self.current_world.odom()
+        p = reading.pose
+        return files.Text(
+            f"Robot at x {p.x:.2f} m, y {p.y:.2f} m, heading {math.degrees(p.yaw):.0f}°, "
+            f"speed {abs(reading.linear_mps):.2f} m/s."
+        )
+
+    def drive_for(self, sim_seconds: float) -> files.Text:
+        """Let `sim_seconds` of simulated time pass, then report speed and distance."""
+        from .motion import drive_report
+
+        return drive_report(self, sim_seconds)
+
+    def wait_until_stopped(self) -> files.Text:
+        """Wait until the robot stands still (from /odom)."""
+        from .motion import stop_report
+
+        return stop_report(self)
+
+    def speed_plot(self) -> Any:
+        """Show a live plot of /odom speed with every velocity change marked; return it."""
+        from ..widgets import SpeedPlot
+
+        plot = SpeedPlot(self.session)
+        plot.show()
+        return plot
+
+    def dry_run(self, package: str, file: str, *args: str) -> files.Text:
+        """Show what `ros2 launch ... ` would start, with each parameter's origin and traps."""
+        from ..launch import dry_run
+
+        report = dry_run(package, file, *args)
+        # rclpy declares these two on every node; the dry run does not know it yet (reported).
+        report.warnings = [w for w in report.warnings if not _RCLPY_OWN.search(w)]
+        return files.Text(report.render())
+
+    def launch(self, package: str, file: str, *args: str) -> Any:
+        """Start `ros2 launch`; show its first lines (stop it with `.stop()`)."""
+        from .launching import start_launch
+
+        return start_launch(self, package, file, *args)
+
+    def events_table(self) -> Any:
+        """Show /parameter_events as a live table; return it."""
+        from ..widgets import EventsTable
+
+        table = EventsTable(self.session)
+        from IPython.display import display
+
+        display(table)
+        return table
+
+    def parameter_panel(self, node: str, save_as: str = "panel_params.yaml") -> Any:
+        """Show a panel of `node`'s parameters built from its descriptors; return it."""
+        from ..widgets import ParameterPanel
+
+        panel = ParameterPanel(node, save_path=self.learner_file(save_as), session=self.session)
+        from IPython.display import display
+
+        display(panel)
+        return panel
+
+    def save_panel(self, panel: Any) -> Any:
+        """Save the panel's node's parameters to its params file and show the file."""
+        path = panel.save()
+        self.state["saved_params"] = path
+        return self.show_file(path)
+
+    def travel_exercise(self) -> Any:
+        """Arm lesson 11's travel exercise (robot to its start pose) and return its checker."""
+        from .exercise import TravelExercise
+
+        exercise = TravelExercise(self)
+        print(exercise.arm(), end="")
+        return exercise

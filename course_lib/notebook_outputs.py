@@ -1,0 +1,118 @@
+"""`make notebooks`: re-execute every lesson in place to refresh its stored outputs.
+
+Each notebook runs top to bottom in a fresh kernel (its own ROS domain, the test
+environment), then volatile parts are removed so a second run changes nothing: execution
+metadata and widget state are dropped, the sanitize rules of tests/nbval_sanitize.cfg are
+applied to text outputs, and cells tagged `nbval-ignore-output` (3D view, widgets, live plots)
+keep their stored outputs when their source did not change (`--all` refreshes those too).
+"""
+
+from __future__ import annotations
+
+import configparser
+import copy
+import os
+import re
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from .paths import NOTEBOOKS_DIR, REPO_ROOT
+from .testing import TEST_ENV
+
+__all__ = ["clean_notebook", "refresh_notebook", "refresh_notebooks", "sanitize_rules"]
+
+SANITIZE_FILE = REPO_ROOT / "tests" / "nbval_sanitize.cfg"
+IGNORE_TAG = "nbval-ignore-output"
+
+
+def sanitize_rules(path: Path = SANITIZE_FILE) -> list[tuple[re.Pattern[str], str]]:
+    """Return the (regex, replacement) pairs of the sanitize file, in order."""
+    parser = configparser.ConfigParser(interpolation=None)
+    parser.read(path)
+    return [(re.compile(parser[s]["regex"]), parser[s]["replace"]) for s in parser.sections()]
+
+
+def _sanitize(text: str, rules: list[tuple[re.Pattern[str], str]]) -> str:
+    for regex, replacement in rules:
+        text = regex.sub(replacement, text)
+    return text
+
+
+def _clean_output(output: Any, rules: list[tuple[re.Pattern[str], str]]) -> Any:
+    if output.get("output_type") == "stream":
+        output["text"] = _sanitize(output["text"], rules)
+    for kind in ("text/plain", "text/html"):
+        data = output.get("data", {})
+        if isinstance(data.get(kind), str):
+            data[kind] = _sanitize(data[kind], rules)
+    if output.get("output_type") == "execute_result":
+        output["execution_count"] = output.get("execution_count")
+    return output
+
+
+def clean_notebook(nb: Any, old: Any | None, *, keep_live: bool = True) -> Any:
+    """Strip volatile metadata; keep old outputs of unchanged live cells (when `keep_live`)."""
+    rules = sanitize_rules()
+    nb.metadata.pop("widgets", None)
+    nb.metadata.get("kernelspec", {}).pop("env", None)
+    previous = {}
+    if old is not None:
+        previous = {c.source: c for c in old.cells if c.cell_type == "code"}
+    for cell in nb.cells:
+        cell.metadata.pop("execution", None)
+        if cell.cell_type != "code":
+            continue
+        cell.outputs = [_clean_output(o, rules) for o in cell.outputs]
+        before = previous.get(cell.source)
+        live = IGNORE_TAG in cell.metadata.get("tags", [])
+        if keep_live and live and before is not None and before.outputs:
+            cell.outputs = copy.deepcopy(before.outputs)
+    return nb
+
+
+def refresh_notebook(path: Path, *, keep_live: bool = True, timeout: int = 180) -> float:
+    """Execute one notebook in place (cwd: notebooks/); return the wall time in seconds."""
+    import nbformat
+    from nbclient import NotebookClient
+
+    old = nbformat.read(path, as_version=4)
+    nb = copy.deepcopy(old)
+    for cell in nb.cells:
+        if cell.cell_type == "code":
+            cell.outputs, cell.execution_count = [], None
+    started = time.monotonic()
+    client = NotebookClient(
+        nb,
+        timeout=timeout,
+        kernel_name="python3",
+        resources={"metadata": {"path": str(path.parent)}},
+        record_timing=False,
+    )
+    client.execute()
+    clean_notebook(nb, old, keep_live=keep_live)
+    text = nbformat.writes(nb) + "\n"
+    if path.read_text(encoding="utf-8") != text:
+        path.write_text(text, encoding="utf-8")
+    return time.monotonic() - started
+
+
+def refresh_notebooks(extra: list[str]) -> int:
+    """Re-execute the notebooks (all, or those named in `extra`); return an exit code."""
+    keep_live = "--all" not in extra
+    names = [a for a in extra if not a.startswith("--")]
+    paths = [Path(n) if os.sep in n else NOTEBOOKS_DIR / n for n in names] or sorted(
+        NOTEBOOKS_DIR.glob("[0-9][0-9]_*.ipynb")
+    )
+    os.environ.update(TEST_ENV)
+    failed = 0
+    for path in paths:
+        try:
+            seconds = refresh_notebook(path, keep_live=keep_live)
+        except Exception as err:  # a failing cell: report it and go on with the others
+            failed += 1
+            print(f"FAILED {path.name}: {type(err).__name__}: {str(err)[-2000:]}", file=sys.stderr)
+            continue
+        print(f"{path.name}: {seconds:.1f} s")
+    return 1 if failed else 0

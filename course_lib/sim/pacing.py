@@ -1,0 +1,74 @@
+"""Keep simulated time in step with the wall clock, and decide which stream is due (pure)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+__all__ = ["Pacer", "Schedule"]
+
+
+class Pacer:
+    """Map simulated time to wall time at a real-time factor (0 = as fast as possible)."""
+
+    def __init__(self, real_time_factor: float = 1.0, *, max_lag_s: float = 0.25) -> None:
+        self.real_time_factor = real_time_factor
+        self.max_lag_s = max_lag_s
+        self._anchor: tuple[float, float] | None = None  # (sim time, wall time)
+
+    def set_factor(self, real_time_factor: float) -> None:
+        """Change the real-time factor from now on."""
+        self.real_time_factor = real_time_factor
+        self._anchor = None
+
+    def restart(self) -> None:
+        """Forget the anchor (after a pause or a reset): the next call re-anchors."""
+        self._anchor = None
+
+    def delay(self, sim_time: float, wall_time: float) -> float:
+        """Return how long to sleep before simulated `sim_time` is due; 0 if it already is."""
+        if self.real_time_factor <= 0:
+            return 0.0
+        if self._anchor is None:
+            self._anchor = (sim_time, wall_time)
+            return 0.0
+        sim0, wall0 = self._anchor
+        due = wall0 + (sim_time - sim0) / self.real_time_factor
+        if wall_time - due > self.max_lag_s:  # far behind (machine busy): do not race to catch up
+            self._anchor = (sim_time, wall_time)
+            return 0.0
+        return max(0.0, due - wall_time)
+
+
+class Schedule:
+    """Streams published every `1/rate` seconds of simulated time, on a common step grid."""
+
+    def __init__(self, rates_hz: Mapping[str, float], timestep_s: float, start_s: float = 0.0):
+        self.timestep_s = timestep_s
+        self.periods = {
+            name: max(1, round(1.0 / (rate * timestep_s))) for name, rate in rates_hz.items()
+        }
+        self._step = round(start_s / timestep_s)
+        self._next = dict.fromkeys(self.periods, self._step)
+
+    def steps_to_next(self) -> int:
+        """Return how many physics steps to take until the next stream is due (>= 0)."""
+        return max(0, min(self._next.values()) - self._step)
+
+    def advance(self, steps: int) -> list[str]:
+        """Record `steps` steps taken; return the streams now due, in a stable order."""
+        self._step += steps
+        due = [name for name, at in self._next.items() if at <= self._step]
+        for name in due:
+            period = self.periods[name]
+            self._next[name] = (self._step // period + 1) * period
+        return due
+
+    @property
+    def time_s(self) -> float:
+        """Return the simulated time the schedule has reached."""
+        return self._step * self.timestep_s
+
+    def rate_hz(self, name: str) -> float:
+        """Return the actual rate of a stream after rounding to whole steps."""
+        return 1.0 / (self.periods[name] * self.timestep_s) if name in self.periods else math.nan

@@ -1,0 +1,116 @@
+"""The simulation process: `python -m course_lib.sim` runs the whole world as one process."""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import os
+import signal
+import sys
+import time
+from collections.abc import Sequence
+
+from ..config.simulation import SimulationSettings, load_simulation_settings
+from ..errors import CourseError
+
+__all__ = ["READY_TEXT", "main", "parse_args"]
+
+READY_TEXT = "MuJoCo world ready"
+
+
+def parse_args(argv: Sequence[str]) -> argparse.Namespace:
+    """Parse the simulation's own options (ROS arguments after --ros-args are left to rclpy)."""
+    parser = argparse.ArgumentParser(
+        prog="python -m course_lib.sim",
+        description="Run the MuJoCo TurtleBot3 Waffle Pi world with its ROS 2 nodes.",
+    )
+    parser.add_argument("--config", help="simulation YAML (default: config/simulation.yaml)")
+    parser.add_argument(
+        "--real-time-factor",
+        type=float,
+        default=None,
+        help="override the config: 1 = real time, 0 = as fast as possible",
+    )
+    parser.add_argument("--paused", action="store_true", help="start with the physics paused")
+    parser.add_argument(
+        "--meshcat-url", default=None, help="zmq url of a meshcat server to stream the 3D view to"
+    )
+    parser.add_argument(
+        "--duration",
+        type=float,
+        default=None,
+        help="stop after this many simulated seconds (benchmarks)",
+    )
+    return parser.parse_args(argv)
+
+
+def _settings(args: argparse.Namespace) -> SimulationSettings:
+    settings = load_simulation_settings(args.config)
+    if args.real_time_factor is not None:
+        import dataclasses
+
+        settings = dataclasses.replace(settings, real_time_factor=args.real_time_factor)
+    return settings
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run until SIGINT/SIGTERM (or --duration); 0 on a clean stop, 2 on a settings error."""
+    import rclpy
+    from rclpy.signals import SignalHandlerOptions
+    from rclpy.utilities import remove_ros_args
+
+    argv = list(sys.argv if argv is None else argv)
+    args = parse_args(remove_ros_args(argv)[1:])
+    try:
+        settings = _settings(args)
+    except CourseError as err:
+        print(err, file=sys.stderr, flush=True)
+        return 2
+    os.environ.setdefault("MUJOCO_GL", "egl")  # headless offscreen camera; read at import
+    from ..viz.live import LiveView
+    from .bridge import Bridge
+    from .physics import Simulation
+
+    sim = Simulation(settings)
+    context = rclpy.Context()
+    rclpy.init(args=argv, context=context, signal_handler_options=SignalHandlerOptions.NO)
+    viewer = LiveView(args.meshcat_url, sim.model, sim.data) if args.meshcat_url else None
+    bridge = Bridge(sim, context, viewer=viewer)
+    bridge.paused = args.paused
+    if args.paused:
+        bridge.nodes["mujoco"].set_parameters([rclpy.parameter.Parameter("paused", value=True)])
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, lambda *_: bridge.stop())
+    logger = bridge.nodes["mujoco"].get_logger()
+
+    def ready() -> None:
+        logger.info(
+            f"{READY_TEXT}: real time factor {bridge.pacer.real_time_factor:g}, "
+            f"timestep {sim.timestep:g} s, {len(bridge.nodes)} nodes"
+        )
+
+    started = [0.0, 0.0]
+
+    def ready_and_mark() -> None:
+        ready()
+        started[:] = [sim.time, time.monotonic()]
+
+    try:
+        bridge.run(ready=ready_and_mark, max_sim_time_s=args.duration)
+        simulated, wall = sim.time - started[0], time.monotonic() - started[1]
+        logger.info(
+            f"Simulated {simulated:.2f} s in {wall:.2f} s of wall time "
+            f"({simulated / max(wall, 1e-9):.1f}x real time)"
+        )
+    finally:
+        # A terminal's Ctrl-C reaches the whole process group and `ros2 launch` forwards another
+        # SIGINT: ignore late ones, or one landing during interpreter exit (when Python has put
+        # the default action back) would kill us with -SIGINT after a clean stop.
+        for signum in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(signum, signal.SIG_IGN)
+        bridge.close()
+        if viewer is not None:
+            viewer.close()
+        with contextlib.suppress(Exception):
+            context.try_shutdown()
+    return 0

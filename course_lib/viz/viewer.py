@@ -1,0 +1,89 @@
+"""The 3D view in a notebook cell: a meshcat server owned by the session, shown in an iframe.
+
+How the browser reaches the server (the iframe's address):
+- "proxy": through jupyter-server-proxy, `<base_url>proxy/<port>/static/`, so it works when
+  JupyterLab is remote (JupyterHub, SSH, containers); the viewer's websocket goes the same way.
+- "direct": `http://127.0.0.1:<port>/static/`, only for a browser on the kernel's machine.
+Default "auto": proxy when jupyter-server-proxy is installed, else direct. Override with the
+environment variable COURSE_VIEWER_URL (proxy|direct); JupyterHub's JUPYTERHUB_SERVICE_PREFIX
+(or COURSE_JUPYTER_BASE_URL) gives the base URL, "/" otherwise.
+"""
+
+from __future__ import annotations
+
+import html
+import importlib.util
+import os
+import re
+from typing import Any
+
+from ..errors import ProcessStartError
+
+__all__ = ["Viewer", "viewer_url"]
+
+_URL_MODE_ENV = "COURSE_VIEWER_URL"
+
+
+def viewer_url(port: int, mode: str | None = None, environ: dict[str, str] | None = None) -> str:
+    """Return the address the notebook's browser should load for a server on `port`."""
+    env = os.environ if environ is None else environ
+    mode = mode or env.get(_URL_MODE_ENV, "auto")
+    if mode == "auto":
+        mode = "proxy" if importlib.util.find_spec("jupyter_server_proxy") else "direct"
+    if mode == "direct":
+        return f"http://127.0.0.1:{port}/static/"
+    base = env.get("JUPYTERHUB_SERVICE_PREFIX") or env.get("COURSE_JUPYTER_BASE_URL") or "/"
+    return f"{base.rstrip('/')}/proxy/{port}/static/"
+
+
+class Viewer:
+    """A meshcat server child process and the iframe that shows it."""
+
+    def __init__(self, process: Any, zmq_url: str, port: int) -> None:
+        self.process = process
+        self.zmq_url = zmq_url
+        self.port = port
+
+    @classmethod
+    def start(cls, session: Any, timeout: float = 10.0) -> Viewer:
+        """Start a meshcat server bound to 127.0.0.1 on free ports, as a session child."""
+        import sys
+
+        process = session.spawn([sys.executable, "-m", "course_lib.viz.server"], name="meshcat")
+        line = process.wait_for_line(r"^web_url=", timeout)
+        zmq = next((ln.text for ln in process.lines if ln.text.startswith("zmq_url=")), None)
+        if line is None or zmq is None:
+            process.stop()
+            tail = "\n".join(ln.text for ln in process.lines[-5:])
+            raise ProcessStartError(
+                f"The 3D viewer (meshcat) did not start.\n{tail}",
+                hint="`make doctor` checks that meshcat is installed.",
+            )
+        port = int(re.search(r":(\d+)/static/", line.text).group(1))  # type: ignore[union-attr]
+        return cls(process, zmq.split("=", 1)[1], port)
+
+    @property
+    def url(self) -> str:
+        """Return the iframe's address (see the module docstring)."""
+        return viewer_url(self.port)
+
+    def iframe_html(self, height: int = 420) -> str:
+        """Return the HTML of the view's iframe."""
+        src = html.escape(self.url, quote=True)
+        return (
+            f'<div style="height: {height}px; width: 100%; resize: both; overflow: hidden">'
+            f'<iframe src="{src}" title="3D view of the simulated robot" '
+            'style="width: 100%; height: 100%; border: none"></iframe></div>'
+        )
+
+    def show(self, height: int = 420) -> Any:
+        """Display the view in the current output cell."""
+        from IPython.display import HTML, display
+
+        view = HTML(self.iframe_html(height))
+        display(view)
+        return view
+
+    def stop(self) -> None:
+        """Stop the server; idempotent."""
+        self.process.stop()

@@ -1,0 +1,84 @@
+"""Lesson 7's plot: the robot's /odom speed over simulated time, each parameter change marked."""
+
+from __future__ import annotations
+
+import threading
+from collections import deque
+from typing import Any
+
+from .events import changes_of, subscribe_parameter_events
+from .plotting import speed_png
+
+__all__ = ["SpeedPlot"]
+
+
+class SpeedPlot:
+    """Record /odom speed and /parameter_events; show them live or as a still picture."""
+
+    def __init__(self, session: Any, *, window: int = 3000) -> None:
+        from nav_msgs.msg import Odometry
+
+        self.session = session
+        self.samples: deque[tuple[float, float]] = deque(maxlen=window)
+        self.marks: list[tuple[float, str]] = []
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
+        self._image: Any = None
+        self._thread: threading.Thread | None = None
+        node = session.node
+        self._subs = [
+            node.create_subscription(Odometry, "/odom", self._on_odom, 10),
+            subscribe_parameter_events(session, self._on_event),
+        ]
+
+    def _on_odom(self, msg: Any) -> None:
+        stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+        with self._lock:
+            self.samples.append((stamp, msg.twist.twist.linear.x))
+
+    def _on_event(self, msg: Any) -> None:
+        changed = [c for c in changes_of(msg) if c.kind == "changed" and c.name == "velocity"]
+        with self._lock:
+            now = self.samples[-1][0] if self.samples else 0.0
+            self.marks += [(now, f"velocity := {c.value:g}") for c in changed]
+
+    def png(self) -> bytes:
+        """Return the plot so far as PNG bytes."""
+        with self._lock:
+            samples, marks = list(self.samples), list(self.marks)
+        return speed_png([t for t, _ in samples], [v for _, v in samples], marks)
+
+    def show(self) -> Any:
+        """Display the live plot (refreshed twice a second until `still()`)."""
+        import ipywidgets as widgets
+        from IPython.display import display
+
+        self._image = widgets.Image(value=self.png(), format="png")
+        display(self._image)
+        if self._thread is None:
+            self._thread = threading.Thread(target=self._refresh, daemon=True, name="speed-plot")
+            self._thread.start()
+        return None
+
+    def _refresh(self) -> None:
+        while not self._stop.wait(0.5):
+            if self.session.closed:
+                return
+            self._image.value = self.png()
+
+    def still(self) -> Any:
+        """Stop the live refresh and return the final plot as a picture."""
+        from IPython.display import Image
+
+        self.close()
+        return Image(data=self.png(), format="png")
+
+    def close(self) -> None:
+        """Stop refreshing and listening; idempotent."""
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout=2.0)
+        if not self.session.closed:
+            for sub in self._subs:
+                self.session.node.destroy_subscription(sub)
+        self._subs = []

@@ -1,0 +1,51 @@
+"""The meshcat scene from the model, and offline replays (deterministic bytes)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from course_lib.sim.physics import Simulation
+from course_lib.viz.recorder import plan_frames
+from course_lib.viz.replay import replay_html, write_replay
+from course_lib.viz.scene import moving_bodies, scene_commands
+
+pytestmark = pytest.mark.sim
+
+PLAN = [(0.2, 0.0, 1.0), (0.0, 0.8, 1.0)]
+
+
+def _replay() -> str:
+    sim = Simulation()
+    return replay_html(sim.model, plan_frames(sim, PLAN))
+
+
+def test_scene_draws_every_visible_geom_of_the_model() -> None:
+    sim = Simulation()
+    commands = scene_commands(sim.model, sim.data)
+    drawn = {c.path.lower().rsplit("/", 1)[1] for c in commands if type(c).__name__ == "SetObject"}
+    expected = {sim.model.geom(i).name for i in range(sim.model.ngeom)}
+    assert drawn == expected
+    assert {"wheel_left", "lidar_head", "camera_board", "caster_left", "floor"} <= drawn
+    assert [sim.model.body(b).name for b in moving_bodies(sim.model)] == [
+        "base_link",
+        "wheel_left_link",
+        "wheel_right_link",
+    ]
+
+
+def test_replay_is_byte_identical_between_runs() -> None:
+    assert _replay() == _replay()
+
+
+def test_replay_is_standalone(tmp_path: Path) -> None:
+    sim = Simulation()
+    page = write_replay(tmp_path / "run.html", sim.model, plan_frames(sim, PLAN)).read_text()
+    assert "MeshCat.Viewer" in page and "http://" not in page.split("<script>")[-1]
+    assert page.count("handle_command_bytearray(bytes(") > 20
+
+
+def test_replay_needs_frames() -> None:
+    with pytest.raises(ValueError, match="at least one frame"):
+        replay_html(Simulation().model, [])

@@ -1,0 +1,78 @@
+"""The 3D view through jupyter-server-proxy, as on JupyterHub: page, script and websocket."""
+
+from __future__ import annotations
+
+import asyncio
+import socket
+import sys
+import time
+import urllib.request
+
+import pytest
+
+from course_lib.session import Session
+from course_lib.sim import start_world
+
+pytestmark = [pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
+
+TOKEN = "course-test-token"
+
+
+def _free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return probe.getsockname()[1]
+
+
+def _wait_listening(port: int, timeout: float = 30.0) -> None:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        with socket.socket() as probe:
+            if probe.connect_ex(("127.0.0.1", port)) == 0:
+                return
+        time.sleep(0.1)
+    raise TimeoutError(f"nothing listens on {port}")
+
+
+async def _transforms_through(url: str, seconds: float) -> int:
+    import tornado.websocket
+
+    connection = await tornado.websocket.websocket_connect(url)
+    count, start = 0, time.monotonic()
+    while time.monotonic() - start < seconds:
+        message = await asyncio.wait_for(connection.read_message(), 2.0)
+        count += isinstance(message, bytes) and b"set_transform" in message
+    connection.close()
+    return count
+
+
+def test_view_works_through_jupyter_server_proxy() -> None:
+    session = Session()
+    try:
+        world = start_world(session, show=True)
+        jupyter_port = _free_port()
+        session.spawn(
+            [
+                sys.executable,
+                "-m",
+                "jupyter",
+                "server",
+                "--no-browser",
+                "--allow-root",
+                "--ip=127.0.0.1",
+                f"--port={jupyter_port}",
+                f"--ServerApp.token={TOKEN}",
+            ],
+            name="jupyter",
+        )
+        _wait_listening(jupyter_port)
+        base = f"http://127.0.0.1:{jupyter_port}{world.viewer.url}"
+        assert world.viewer.url == f"/proxy/{world.viewer.port}/static/"
+        page = urllib.request.urlopen(f"{base}?token={TOKEN}", timeout=10).read()
+        assert b"viewer.connect(base" in page  # the page that finds its websocket behind a proxy
+        script = urllib.request.urlopen(f"{base}main.min.js?token={TOKEN}", timeout=10).read()
+        assert len(script) > 500_000
+        socket_url = f"ws://127.0.0.1:{jupyter_port}/proxy/{world.viewer.port}/?token={TOKEN}"
+        assert asyncio.run(_transforms_through(socket_url, 1.0)) >= 30
+    finally:
+        session.close()
