@@ -44,13 +44,23 @@ def _in_process_client():  # type: ignore[no-untyped-def]
     return client()
 
 
+def _course_domain() -> str | None:
+    """Return the domain of a running `make lab` when the shell sets none (then use it)."""
+    from course_lib.lab import running_lab_domain
+
+    domain = running_lab_domain()
+    if domain is not None:
+        os.environ["ROS_DOMAIN_ID"] = domain
+    return domain
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run `ros2 <argv>` and return its exit code."""
     from course_lib.ros2.commands import command_of
 
     argv = list(sys.argv[1:] if argv is None else argv)
     command = command_of(argv)
-    domain = os.environ.get("ROS_DOMAIN_ID", "").strip() or None
+    domain = os.environ.get("ROS_DOMAIN_ID", "").strip() or _course_domain()
     if command not in _DAEMON_COMMANDS or domain is None:
         return _local(argv, domain)
     from course_lib.ros2.connect import DaemonUnavailable, connect_or_start, request

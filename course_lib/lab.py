@@ -7,13 +7,14 @@ import json
 import os
 import signal
 from collections.abc import Sequence
+from pathlib import Path
 
 from .domain import lease_domain
-from .paths import NOTEBOOKS_DIR, REPO_ROOT, venv_bin_dir
+from .paths import NOTEBOOKS_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
 from .processes import ChildProcess, spawn
 from .session import session_env
 
-__all__ = ["FIRST_LESSON", "lab_argv", "run_lab"]
+__all__ = ["FIRST_LESSON", "lab_argv", "run_lab", "running_lab_domain"]
 
 FIRST_LESSON = "notebooks/01_setup_check.ipynb"
 
@@ -34,6 +35,17 @@ def lab_argv(extra: Sequence[str] = ()) -> list[str]:
     ]
 
 
+def running_lab_domain() -> str | None:
+    """Return the ROS domain of this user's newest running `make lab`, if any."""
+    markers = sorted(runtime_dir().glob("lab-*.domain"), key=lambda p: p.stat().st_mtime)
+    for marker in reversed(markers):
+        pid = marker.stem.removeprefix("lab-")
+        if pid.isdigit() and Path(f"/proc/{pid}").exists():
+            return marker.read_text().strip() or None
+        marker.unlink(missing_ok=True)  # a lab that was killed
+    return None
+
+
 def _terminal_settings() -> str:
     """Return terminado settings that start the user's shell as a plain interactive shell."""
     shell = os.environ.get("SHELL") or "/bin/bash"
@@ -43,6 +55,8 @@ def _terminal_settings() -> str:
 def run_lab(extra: Sequence[str] = ()) -> int:
     """Start the ros2 daemon and JupyterLab in a leased domain; stop both on Ctrl-C."""
     lease = lease_domain()
+    marker = runtime_dir() / f"lab-{os.getpid()}.domain"
+    marker.write_text(str(lease.domain_id))
     env = session_env(lease.domain_id)
     env["COURSE_LAB"] = "1"
     print(f"ROS 2 course: ROS_DOMAIN_ID={lease.domain_id} for this JupyterLab and its terminals.")
@@ -62,5 +76,6 @@ def run_lab(extra: Sequence[str] = ()) -> int:
     finally:
         for child in reversed(children):
             child.stop(timeout=5.0)
+        marker.unlink(missing_ok=True)
         lease.release()
     return code or 0

@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from course_lib import ament
+from course_lib.domain import lease_domain
 from course_lib.errors import PackageNotFoundError
 
 REPO = Path(__file__).resolve().parents[3]
@@ -62,10 +63,11 @@ def test_run_interrupted_by_ctrl_c_prints_interrupt_and_exits_254() -> None:
     # The golden tutorial node (no KeyboardInterrupt handling) runs through --prefix, so the
     # test does not depend on how the workspace's own entry script was built.
     node = REPO / "tests" / "golden" / "ros2" / "nodes" / "param_vel_node.py"
+    lease = lease_domain({})  # never a fixed id: parallel sessions would see this node
     env = {
         **ament.workspace_env(),
         "PYTHONPATH": str(REPO),
-        "ROS_DOMAIN_ID": "45",
+        "ROS_DOMAIN_ID": str(lease.domain_id),
         "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
         "PYTHONUNBUFFERED": "1",
     }
@@ -97,4 +99,5 @@ def test_run_interrupted_by_ctrl_c_prints_interrupt_and_exits_254() -> None:
     finally:
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)
+        lease.release()
     assert (stdout, proc.returncode) == ("[ros2run]: Interrupt\n", 254)

@@ -1,0 +1,51 @@
+"""`make lab`: the command line it runs, and how terminals find its domain."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from course_lib import lab
+from course_lib.paths import runtime_dir
+
+
+def test_lab_listens_on_loopback_and_keeps_ros2_on_terminal_path() -> None:
+    argv = lab.lab_argv(["--no-browser"])
+    assert "--ServerApp.ip=127.0.0.1" in argv
+    settings = next(a for a in argv if a.startswith("--ServerApp.terminado_settings="))
+    shell_command = json.loads(settings.split("=", 1)[1])["shell_command"]
+    assert "-l" not in shell_command and "--login" not in shell_command
+    assert argv[-2:] == ["--no-browser", lab.FIRST_LESSON]
+
+
+@pytest.fixture
+def markers() -> list:
+    made: list = []
+    yield made
+    for marker in made:
+        marker.unlink(missing_ok=True)
+
+
+def test_terminals_use_the_running_labs_domain(markers: list) -> None:
+    marker = runtime_dir() / f"lab-{os.getpid()}.domain"
+    marker.write_text("77")
+    markers.append(marker)
+    assert lab.running_lab_domain() == "77"
+
+
+def test_a_killed_labs_marker_is_ignored_and_removed(markers: list) -> None:
+    dead = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout.strip()
+    marker = runtime_dir() / f"lab-{dead}.domain"
+    marker.write_text("78")
+    markers.append(marker)
+    assert lab.running_lab_domain() != "78"
+    assert not marker.exists()
