@@ -49,6 +49,8 @@ def _clean_output(output: Any, rules: list[tuple[re.Pattern[str], str]]) -> Any:
             data[kind] = _sanitize(data[kind], rules)
     if output.get("output_type") == "execute_result":
         output["execution_count"] = output.get("execution_count")
+    if output.get("output_type") in ("display_data", "execute_result"):
+        output.setdefault("metadata", {})  # required by the notebook format
     return output
 
 
@@ -64,11 +66,11 @@ def clean_notebook(nb: Any, old: Any | None, *, keep_live: bool = True) -> Any:
         cell.metadata.pop("execution", None)
         if cell.cell_type != "code":
             continue
-        cell.outputs = [_clean_output(o, rules) for o in cell.outputs]
         before = previous.get(cell.source)
         live = IGNORE_TAG in cell.metadata.get("tags", [])
         if keep_live and live and before is not None and before.outputs:
             cell.outputs = copy.deepcopy(before.outputs)
+        cell.outputs = [_clean_output(o, rules) for o in cell.outputs]
     return nb
 
 
@@ -92,6 +94,7 @@ def refresh_notebook(path: Path, *, keep_live: bool = True, timeout: int = 180) 
     )
     client.execute()
     clean_notebook(nb, old, keep_live=keep_live)
+    nbformat.validate(nb)  # never store a notebook JupyterLab would flag as invalid
     text = nbformat.writes(nb) + "\n"
     if path.read_text(encoding="utf-8") != text:
         path.write_text(text, encoding="utf-8")

@@ -55,6 +55,10 @@ def _widget_for(desc: Any, value: Any) -> Any:
     return widgets.Text(value=str(value), **common)
 
 
+# Declared by rclpy on every node; not the node's own settings, so the panel leaves them out.
+RCLPY_BUILTINS = frozenset({"use_sim_time", "start_type_description_service"})
+
+
 class ParameterPanel:
     """A panel of one node's parameters, kept in sync with the node."""
 
@@ -69,7 +73,7 @@ class ParameterPanel:
         self.save_path = Path(save_path)
         self.commands: list[str] = []
         self._syncing = threading.local()
-        descriptors = [d for d in api.param_describe(self.node) if d.name != "use_sim_time"]
+        descriptors = [d for d in api.param_describe(self.node) if d.name not in RCLPY_BUILTINS]
         self.descriptors = {d.name: d for d in descriptors}
         self.controls: dict[str, Any] = {}
         for desc in descriptors:

@@ -1,0 +1,119 @@
+"""Lesson 11 in a real browser: drag the panel's velocity slider, read it back with `ros2`."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+from terminal import Terminal
+
+pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
+
+LESSONS = ["11_beyond_the_tutorial.ipynb"]
+NODE = "/descriptor_vel_node"
+STEP = 0.01  # the velocity descriptor's step (range 0.0 to 0.26)
+TARGET = 0.13  # where the drag aims: the middle of the track, far from any value the lesson leaves
+SET_OK = "Set parameter successful"
+
+
+def _run_all(page) -> None:  # type: ignore[no-untyped-def]
+    page.get_by_role("menuitem", name="Run", exact=True).click()
+    page.get_by_role("menuitem", name="Run All Cells", exact=True).click()
+
+
+def _slider(page, name: str):  # type: ignore[no-untyped-def]
+    """Return the panel's slider row labelled `name`."""
+    label = page.locator(".widget-label", has_text=re.compile(rf"^\s*{name}\s*$"))
+    return page.locator(".widget-slider").filter(has=label)
+
+
+def _readout(slider) -> float:  # type: ignore[no-untyped-def]
+    return float(slider.locator(".widget-readout").inner_text())
+
+
+def _wait_logged(page, command: str, timeout: float = 20_000) -> None:  # type: ignore[no-untyped-def]
+    """Wait until the panel's log shows `command` then its answer; fail with the log."""
+    from playwright.sync_api import TimeoutError as PlaywrightTimeout
+
+    panel = page.locator(".widget-vbox", has_text=f"Parameters of {NODE}").last
+    log = panel.locator(".widget-output")
+    try:
+        page.wait_for_function(
+            "([el, text]) => el.innerText.includes(text)",
+            arg=[log.element_handle(), f"$ {command}\n{SET_OK}"],
+            timeout=timeout,
+        )
+    except PlaywrightTimeout:
+        raise AssertionError(
+            f"the panel never printed `{command}` then {SET_OK!r}; its log:\n{log.inner_text()}"
+        ) from None
+
+
+@pytest.fixture(scope="module")
+def page(browser, lab):  # type: ignore[no-untyped-def]
+    tab = browser.new_page(viewport={"width": 1280, "height": 1000})
+    tab.goto(lab.lab_url(LESSONS[0]))
+    yield tab
+    tab.close()
+
+
+def test_lesson11_panel_slider_sets_the_node(page, lab, artifacts: Path) -> None:
+    terminal = None
+    try:
+        page.get_by_text("Python 3 (ipykernel) | Idle").wait_for(timeout=60_000)
+        _run_all(page)
+        velocity = _slider(page, "velocity")
+        velocity.wait_for(timeout=60_000)
+        page.wait_for_function(  # the kernel handles the widgets' messages only when idle
+            "() => ![...document.querySelectorAll('.jp-InputPrompt')]"
+            ".some(p => p.textContent.includes('*'))",
+            timeout=90_000,
+        )
+        page.screenshot(path=str(artifacts / "page_done.png"), full_page=True)
+        errors = page.locator('[data-mime-type="application/vnd.jupyter.error"]')
+        assert errors.count() == 0, f"a cell failed: {errors.first.inner_text()[:2000]}"
+
+        # With travel_time 0.0 the node drives until velocity is 0.0, so no trip ends (and
+        # resets velocity) before `ros2` reads it. The exercise's re-arm leaves it at 0.0;
+        # otherwise Home on its focused handle moves it there.
+        travel = _slider(page, "travel_time")
+        travel.scroll_into_view_if_needed()
+        if _readout(travel) != 0.0:
+            travel.locator(".noUi-handle").focus()
+            page.keyboard.press("Home")
+            _wait_logged(page, f"ros2 param set {NODE} travel_time 0.0")
+
+        velocity.scroll_into_view_if_needed()
+        before = _readout(velocity)
+        handle = velocity.locator(".noUi-handle").bounding_box()
+        track = velocity.locator(".noUi-target").bounding_box()
+        assert handle is not None and track is not None, "the velocity slider is not shown"
+        x, y = handle["x"] + handle["width"] / 2, handle["y"] + handle["height"] / 2
+        page.mouse.move(x, y)
+        page.mouse.down()
+        page.mouse.move(track["x"] + track["width"] * TARGET / 0.26, y, steps=12)
+        page.mouse.up()
+        page.wait_for_function(
+            "([el, before]) => el.innerText.trim() !== before",
+            arg=[velocity.locator(".widget-readout").element_handle(), f"{before:.2f}"],
+            timeout=10_000,
+        )
+        shown = _readout(velocity)
+        page.screenshot(path=str(artifacts / "slider_dragged.png"))
+        assert abs(shown - TARGET) <= 3 * STEP, f"the drag ended at {shown}, aimed at {TARGET}"
+        _wait_logged(page, f"ros2 param set {NODE} velocity {shown!r}")
+
+        terminal = Terminal(page, lab.base_url, lab.token)
+        terminal.run(f"ros2 param get {NODE} velocity", "Double value is:")
+        page.wait_for_function(  # the whole line, up to its end
+            r"() => /Double value is: \S+\r?\n/.test(window.__term.out)", timeout=5_000
+        )
+        got = terminal.output
+        value = re.search(r"Double value is: (\S+)\r?\n", got)
+        assert value is not None, got
+        assert abs(float(value[1]) - shown) <= STEP / 2, f"slider shows {shown}; ros2 says {got}"
+    finally:
+        if terminal is not None:
+            terminal.close()
+        page.screenshot(path=str(artifacts / "page_last.png"))
