@@ -2,16 +2,15 @@
 
 from __future__ import annotations
 
-import contextlib
 import json
 import os
 import signal
 from collections.abc import Sequence
-from pathlib import Path
 
 from .domain import lease_domain
 from .paths import NOTEBOOKS_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
-from .processes import ChildProcess, spawn
+from .processes import ChildProcess, pid_alive, spawn
+from .ros2 import start_daemon
 from .session import session_env
 
 __all__ = ["FIRST_LESSON", "lab_argv", "run_lab", "running_lab_domain"]
@@ -40,7 +39,7 @@ def running_lab_domain() -> str | None:
     markers = sorted(runtime_dir().glob("lab-*.domain"), key=lambda p: p.stat().st_mtime)
     for marker in reversed(markers):
         pid = marker.stem.removeprefix("lab-")
-        if pid.isdigit() and Path(f"/proc/{pid}").exists():
+        if pid.isdigit() and pid_alive(int(pid)):
             return marker.read_text().strip() or None
         marker.unlink(missing_ok=True)  # a lab that was killed
     return None
@@ -60,11 +59,7 @@ def run_lab(extra: Sequence[str] = ()) -> int:
     env = session_env(lease.domain_id)
     env["COURSE_LAB"] = "1"
     print(f"ROS 2 course: ROS_DOMAIN_ID={lease.domain_id} for this JupyterLab and its terminals.")
-    children: list[ChildProcess] = []
-    with contextlib.suppress(ImportError):
-        from .ros2 import start_daemon
-
-        children.append(start_daemon(env))
+    children: list[ChildProcess] = [start_daemon(env)]
     signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop cleanly on SIGTERM too
     lab = spawn(lab_argv(extra), name="jupyterlab", env=env, cwd=REPO_ROOT, capture=False)
     children.append(lab)

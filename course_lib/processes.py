@@ -30,6 +30,7 @@ __all__ = [
     "ChildProcess",
     "OutputLine",
     "owner_tag",
+    "pid_alive",
     "process_environ",
     "reap_orphans",
     "spawn",
@@ -39,6 +40,7 @@ OWNER_ENV = "COURSE_OWNER"
 _PR_SET_PDEATHSIG = 1
 _MAX_LINES = 5000
 _spawner = ThreadPoolExecutor(max_workers=1, thread_name_prefix="course-spawner")
+_LIBC = ctypes.CDLL(None, use_errno=True)  # loaded once: preexec must not load libraries
 
 
 @dataclass(frozen=True)
@@ -59,6 +61,11 @@ def _start_time(pid: int) -> str | None:
     return None if fields[0] in ("Z", "X") else fields[19]
 
 
+def pid_alive(pid: int) -> bool:
+    """Return True while process `pid` runs (a zombie counts as dead)."""
+    return _start_time(pid) is not None
+
+
 def owner_tag(pid: int | None = None) -> str:
     """Return the tag that marks children of process `pid` (default: this process)."""
     pid = os.getpid() if pid is None else pid
@@ -71,10 +78,8 @@ def _owner_alive(tag: str) -> bool:
 
 
 def _die_with_parent(parent_pid: int) -> Callable[[], None]:
-    libc = ctypes.CDLL(None, use_errno=True)
-
     def preexec() -> None:
-        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        _LIBC.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
         if os.getppid() != parent_pid:  # the parent died before prctl took effect
             os._exit(1)
 
@@ -94,7 +99,6 @@ class ChildProcess:
         self.name = name
         self.argv = list(argv)
         self._respawn = respawn
-        self._restart_hooks: list[Callable[[ChildProcess], None]] = []
         self._lines: deque[OutputLine] = deque(maxlen=_MAX_LINES)
         self._listeners: list[Callable[[OutputLine], None]] = []
         self._cond = threading.Condition()
@@ -126,7 +130,7 @@ class ChildProcess:
     def alive(self) -> bool:
         # poll() says None while another thread waits on the child: ask /proc too (a zombie
         # is dead), so a killed child never looks alive.
-        return self._popen.poll() is None and _start_time(self.pid) is not None
+        return self._popen.poll() is None and pid_alive(self.pid)
 
     @property
     def lines(self) -> list[OutputLine]:
@@ -211,10 +215,6 @@ class ChildProcess:
             os.killpg(self.pid, signal.SIGKILL)  # grandchildren left in the group
         return code if code is not None else -signal.SIGKILL
 
-    def add_restart_hook(self, hook: Callable[[ChildProcess], None]) -> None:
-        """Call `hook(self)` after each restart() (a session re-adopts its child this way)."""
-        self._restart_hooks.append(hook)
-
     def restart(self, *, timeout: float = 5.0) -> ChildProcess:
         """Stop the child if it still runs, then start the same command again in this handle.
 
@@ -231,8 +231,6 @@ class ChildProcess:
         except OSError as exc:
             raise ProcessStartError(f"Could not restart {self.name}: {exc}") from exc
         self._attach(popen)
-        for hook in list(self._restart_hooks):
-            hook(self)
         return self
 
 

@@ -20,17 +20,17 @@ from .errors import SessionClosedError
 from .paths import PACKAGE_DIR
 from .processes import ChildProcess, reap_orphans, spawn
 
-__all__ = ["FASTDDS_PROFILE", "Session", "get_session"]
+__all__ = ["FASTDDS_PROFILE", "SESSION_DOMAIN_ENV", "Session", "get_session", "session_env"]
 
 FASTDDS_PROFILE = PACKAGE_DIR / "dds" / "fastdds_profile.xml"
 _PROFILE_ENV = "FASTRTPS_DEFAULT_PROFILES_FILE"
-_SESSION_DOMAIN_ENV = "COURSE_SESSION_DOMAIN"  # marks a ROS_DOMAIN_ID we set ourselves
+SESSION_DOMAIN_ENV = "COURSE_SESSION_DOMAIN"  # marks a ROS_DOMAIN_ID we set ourselves
 
 
 def _explicit_env() -> dict[str, str]:
     """Return os.environ without a domain id that an earlier session of ours put there."""
     env = dict(os.environ)
-    if env.get(_SESSION_DOMAIN_ENV) and env.get(DOMAIN_ENV) == env[_SESSION_DOMAIN_ENV]:
+    if env.get(SESSION_DOMAIN_ENV) and env.get(DOMAIN_ENV) == env[SESSION_DOMAIN_ENV]:
         env.pop(DOMAIN_ENV)
     return env
 
@@ -64,7 +64,7 @@ class Session:
         # shell commands (`!ros2 ...`) and launch files see the workspace as if sourced.
         overlay = (*isolation_env(0), _PROFILE_ENV, "AMENT_PREFIX_PATH", "COLCON_PREFIX_PATH")
         os.environ.update({k: self.env[k] for k in overlay if k in self.env})
-        os.environ[DOMAIN_ENV] = os.environ[_SESSION_DOMAIN_ENV] = str(self.domain_id)
+        os.environ[DOMAIN_ENV] = os.environ[SESSION_DOMAIN_ENV] = str(self.domain_id)
         os.environ.pop("ROS_LOCALHOST_ONLY", None)
         self._children: list[ChildProcess] = []
         self._lock = threading.Lock()
@@ -102,10 +102,9 @@ class Session:
 
     @property
     def children(self) -> list[ChildProcess]:
-        """Return the children that are still running."""
+        """Return the children that are still running (a restarted one counts again)."""
         with self._lock:
-            self._children = [c for c in self._children if c.alive]
-            return list(self._children)
+            return [c for c in self._children if c.alive]
 
     def _check_open(self) -> None:
         if self._closed:
@@ -134,16 +133,9 @@ class Session:
         self._check_open()
         env = {**self.env, **(env_extra or {})}
         child = spawn(argv, name=name, env=env, cwd=cwd, merge_stderr=merge_stderr)
-        child.add_restart_hook(self._adopt)
-        self._adopt(child)
-        return child
-
-    def _adopt(self, child: ChildProcess) -> None:
-        """Own `child` (again, after `child.restart()`), so that close() stops it."""
-        self._check_open()
         with self._lock:
-            if child not in self._children:
-                self._children.append(child)
+            self._children.append(child)  # kept when it exits: restart() revives the handle
+        return child
 
     def run(
         self,
@@ -158,8 +150,9 @@ class Session:
         return self.spawn([str(path), *args], name=name or executable, cwd=cwd)
 
     def stop_children(self, *, timeout: float = 5.0) -> None:
-        """Stop every child like Ctrl-C, all at once."""
-        children = self.children
+        """Stop every child like Ctrl-C, all at once (exited ones: what is left of their group)."""
+        with self._lock:
+            children = list(self._children)
         if children:
             with ThreadPoolExecutor(max_workers=len(children)) as pool:
                 list(pool.map(lambda c: c.stop(timeout=timeout), children))
@@ -179,9 +172,9 @@ class Session:
         with contextlib.suppress(Exception):
             self.context.try_shutdown()
         self._lease.release()
-        if os.environ.get(_SESSION_DOMAIN_ENV) == str(self.domain_id):
+        if os.environ.get(SESSION_DOMAIN_ENV) == str(self.domain_id):
             os.environ.pop(DOMAIN_ENV, None)
-            os.environ.pop(_SESSION_DOMAIN_ENV, None)
+            os.environ.pop(SESSION_DOMAIN_ENV, None)
 
 
 _current: Session | None = None

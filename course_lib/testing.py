@@ -6,9 +6,12 @@ import os
 import subprocess
 import sys
 
+from .domain import DOMAIN_ENV
 from .paths import NOTEBOOKS_DIR, REPO_ROOT
+from .processes import OWNER_ENV
+from .session import SESSION_DOMAIN_ENV
 
-__all__ = ["TEST_ENV", "pytest_argv", "run_tests"]
+__all__ = ["TEST_ENV", "independent_env", "pytest_argv", "run_tests"]
 
 # What the runner fixes so that checked outputs never depend on the machine (STYLE.md).
 TEST_ENV = {
@@ -18,6 +21,17 @@ TEST_ENV = {
     "IPYKERNEL_CELL_NAME": "<IPY-INPUT>",
     "PYDEVD_DISABLE_FILE_VALIDATION": "1",
 }
+
+
+def independent_env(**extra: str) -> dict[str, str]:
+    """Return the environment for a process that starts a course session of its own.
+
+    Like a fresh `make lab` or kernel: this process's domain and owner tag are left out (the
+    child leases a domain itself), and the test settings are in.
+    """
+    own = (DOMAIN_ENV, SESSION_DOMAIN_ENV, OWNER_ENV)
+    env = {k: v for k, v in os.environ.items() if k not in own}
+    return {**env, **TEST_ENV, **extra}
 
 
 def pytest_argv(extra: list[str]) -> list[str]:

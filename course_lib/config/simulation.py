@@ -114,7 +114,7 @@ class Camera:
 
 
 DEFAULT_OBSTACLES = (
-    Obstacle("obstacle_box", "box", (1.0, 0.0), (0.2, 0.6, 0.3), color=(0.8, 0.3, 0.2)),
+    Obstacle("obstacle_box", "box", (2.5, 0.0), (0.2, 0.6, 0.3), color=(0.8, 0.3, 0.2)),
     Obstacle("obstacle_cylinder", "cylinder", (-0.8, 0.9), (0.24, 0.4), color=(0.2, 0.5, 0.8)),
     Obstacle("obstacle_wall", "box", (0.2, -1.5), (2.4, 0.1, 0.3), color=(0.5, 0.5, 0.45)),
 )

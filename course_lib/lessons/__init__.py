@@ -5,7 +5,6 @@ Every notebook's first cell: `from course_lib.lessons import start; lesson = sta
 
 from __future__ import annotations
 
-import os
 from typing import Any
 
 from .lesson import TITLES, Lesson
@@ -39,15 +38,12 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
     Re-running stops the nodes the lesson started and puts the robot back at its start pose
     when the world runs, so the lesson starts over from a clean state.
     """
-    from .. import ament
     from ..session import get_session
 
     if number not in TITLES:
         raise ValueError(f"there are lessons 1 to {max(TITLES)}, not {number}")
     settings = load_course_settings(settings_path)  # a ConfigError names file, line and key
     session = get_session()
-    # Like `source install/setup.bash` in the learner's terminal: ament lookups in this kernel.
-    os.environ["AMENT_PREFIX_PATH"] = ament.workspace_env()["AMENT_PREFIX_PATH"]
     _prepare_ipython()
     previous = _lessons.get(number)
     lesson = Lesson(number, session, settings)

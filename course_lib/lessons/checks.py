@@ -37,7 +37,7 @@ def _lesson_1(lesson: Any) -> list[Check]:
     from .environment import versions
 
     found = versions()
-    exes = ament.package_executables("parameter_tests", lesson.package_env())
+    exes = ament.package_executables("parameter_tests", lesson.session.env)
     return [
         check("ROS 2 Jazzy's rclpy is installed", found["ROS 2 distro"] == "jazzy"),
         check(
@@ -87,7 +87,7 @@ def _lesson_4(lesson: Any) -> list[Check]:
     from .. import ament
     from ..launch.declared import declared_parameters
 
-    exe = ament.find_executable("parameter_tests", "param_vel", lesson.package_env())
+    exe = ament.find_executable("parameter_tests", "param_vel", lesson.session.env)
     declared = declared_parameters(str(exe))
     velocity = declared.get("velocity")
     source = NODE_SOURCE.read_text(encoding="utf-8")

@@ -14,7 +14,6 @@ import time
 from pathlib import Path
 from typing import Any
 
-from .. import ament
 from ..errors import CourseError
 from ..paths import REPO_ROOT
 from ..processes import ChildProcess
@@ -216,10 +215,6 @@ class Lesson:
         from .checks import run_checks
 
         return SelfCheck.of(self.number, run_checks(self))
-
-    def package_env(self) -> dict[str, str]:
-        """Return the session's environment with the workspace overlay (for launch, ament)."""
-        return ament.workspace_env(self.session.env)
 
     # --- lesson-specific tools (thin doors onto their modules) --------------------------------
     def where(self) -> files.Text:

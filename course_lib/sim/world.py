@@ -133,25 +133,25 @@ class World:
         """Wait until /odom reports simulated time >= `seconds`."""
         return self.wait_for_odom(lambda r: r.time_s >= seconds - 1e-6, timeout)
 
-    def _matched(self, publisher: Any, timeout: float = 5.0) -> None:
-        """Wait until the simulation subscribes to `publisher` (else the first message is lost)."""
+    def _wait_for_peer(self, count: Any, problem: str, timeout: float = 5.0) -> None:
+        """Wait until `count()` (matched subscribers or publishers) is non-zero."""
         deadline = time.monotonic() + timeout
-        while publisher.get_subscription_count() == 0:
+        while count() == 0:
             self._check_alive()
             if time.monotonic() > deadline:
-                raise TimeoutError(f"the simulation does not listen on {publisher.topic_name}")
+                raise TimeoutError(problem)
             with self._cond:
                 self._cond.wait(0.02)
 
-    def _matched_subscription(self, subscription: Any, timeout: float = 5.0) -> None:
+    def _matched(self, publisher: Any) -> None:
+        """Wait until the simulation subscribes to `publisher` (else the first message is lost)."""
+        problem = f"the simulation does not listen on {publisher.topic_name}"
+        self._wait_for_peer(publisher.get_subscription_count, problem)
+
+    def _matched_subscription(self, subscription: Any) -> None:
         """Wait until the simulation publishes to `subscription`."""
-        deadline = time.monotonic() + timeout
-        while subscription.get_publisher_count() == 0:
-            self._check_alive()
-            if time.monotonic() > deadline:
-                raise TimeoutError(f"the simulation does not publish {subscription.topic_name}")
-            with self._cond:
-                self._cond.wait(0.02)
+        problem = f"the simulation does not publish {subscription.topic_name}"
+        self._wait_for_peer(subscription.get_publisher_count, problem)
 
     def drive(self, linear_mps: float = 0.0, angular_radps: float = 0.0) -> None:
         """Publish one /cmd_vel twist (the robot keeps it until the next one)."""

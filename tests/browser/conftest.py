@@ -69,3 +69,12 @@ def lab(request: pytest.FixtureRequest) -> Iterator[LabServer]:
         yield server
     finally:
         server.stop()
+
+
+@pytest.fixture(scope="module")
+def page(browser, lab, request: pytest.FixtureRequest):  # type: ignore[no-untyped-def]
+    """One browser tab on the module's first lesson, shared by its tests (they run in order)."""
+    tab = browser.new_page(viewport={"width": 1280, "height": 1000})
+    tab.goto(lab.lab_url(request.module.LESSONS[0]))
+    yield tab
+    tab.close()

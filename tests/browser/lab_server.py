@@ -11,19 +11,17 @@ import nbformat
 
 from course_lib.paths import NOTEBOOKS_DIR, REPO_ROOT
 from course_lib.processes import ChildProcess, spawn
-from course_lib.testing import TEST_ENV
+from course_lib.testing import independent_env
 
 __all__ = ["ARTIFACTS", "LabServer"]
 
 ARTIFACTS = REPO_ROOT / "test-artifacts" / "browser"
-_SESSION_VARS = ("ROS_DOMAIN_ID", "COURSE_SESSION_DOMAIN", "COURSE_OWNER")
 
 
 class LabServer:
     """`python -m course_lib lab` on copies of lessons (running them never rewrites notebooks/)."""
 
     def __init__(self, lessons: list[str], folder: Path, timeout: float = 60.0) -> None:
-        import os
 
         self.folder = folder
         folder.mkdir(parents=True, exist_ok=True)
@@ -34,8 +32,7 @@ class LabServer:
                     cell.outputs, cell.execution_count = [], None
             nbformat.write(notebook, folder / name)
         self.token = secrets.token_hex(16)
-        env = {k: v for k, v in os.environ.items() if k not in _SESSION_VARS}
-        env.update(TEST_ENV)
+        env = independent_env()
         argv = [
             sys.executable, "-m", "course_lib", "lab",
             "--no-browser", "--ServerApp.port=0", f"--IdentityProvider.token={self.token}",

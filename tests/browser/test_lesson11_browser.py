@@ -6,6 +6,7 @@ import re
 from pathlib import Path
 
 import pytest
+from notebook_ui import run_all_cells, wait_all_ran
 from terminal import Terminal
 
 pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
@@ -15,11 +16,6 @@ NODE = "/descriptor_vel_node"
 STEP = 0.01  # the velocity descriptor's step (range 0.0 to 0.26)
 TARGET = 0.13  # where the drag aims: the middle of the track, far from any value the lesson leaves
 SET_OK = "Set parameter successful"
-
-
-def _run_all(page) -> None:  # type: ignore[no-untyped-def]
-    page.get_by_role("menuitem", name="Run", exact=True).click()
-    page.get_by_role("menuitem", name="Run All Cells", exact=True).click()
 
 
 def _slider(page, name: str):  # type: ignore[no-untyped-def]
@@ -50,29 +46,13 @@ def _wait_logged(page, command: str, timeout: float = 20_000) -> None:  # type: 
         ) from None
 
 
-@pytest.fixture(scope="module")
-def page(browser, lab):  # type: ignore[no-untyped-def]
-    tab = browser.new_page(viewport={"width": 1280, "height": 1000})
-    tab.goto(lab.lab_url(LESSONS[0]))
-    yield tab
-    tab.close()
-
-
 def test_lesson11_panel_slider_sets_the_node(page, lab, artifacts: Path) -> None:
     terminal = None
     try:
-        page.get_by_text("Python 3 (ipykernel) | Idle").wait_for(timeout=60_000)
-        _run_all(page)
+        run_all_cells(page)
         velocity = _slider(page, "velocity")
         velocity.wait_for(timeout=60_000)
-        page.wait_for_function(  # the kernel handles the widgets' messages only when idle
-            "() => ![...document.querySelectorAll('.jp-InputPrompt')]"
-            ".some(p => p.textContent.includes('*'))",
-            timeout=90_000,
-        )
-        page.screenshot(path=str(artifacts / "page_done.png"), full_page=True)
-        errors = page.locator('[data-mime-type="application/vnd.jupyter.error"]')
-        assert errors.count() == 0, f"a cell failed: {errors.first.inner_text()[:2000]}"
+        wait_all_ran(page, artifacts)  # the kernel handles widget messages only when idle
 
         # With travel_time 0.0 the node drives until velocity is 0.0, so no trip ends (and
         # resets velocity) before `ros2` reads it. The exercise's re-arm leaves it at 0.0;

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import queue
 import re
 import time
@@ -14,31 +13,20 @@ import psutil
 from jupyter_client.manager import KernelManager
 
 from course_lib.paths import REPO_ROOT
-from course_lib.processes import OWNER_ENV, process_environ
-from course_lib.testing import TEST_ENV
+from course_lib.processes import OWNER_ENV, pid_alive, process_environ
+from course_lib.testing import independent_env
 
 __all__ = [
     "CellResult",
     "Kernel",
     "course_pids",
     "describe",
-    "kernel_env",
     "pid_alive",
     "process_tree",
     "wait_gone",
 ]
 
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
-# Set by an in-process Session of the test worker: a kernel must lease its own domain.
-_SESSION_VARS = ("ROS_DOMAIN_ID", "COURSE_SESSION_DOMAIN", "COURSE_OWNER")
-
-
-def kernel_env(**extra: str) -> dict[str, str]:
-    """Return the environment a kernel of `make lab`/nbval gets, minus this process's domain."""
-    env = {k: v for k, v in os.environ.items() if k not in _SESSION_VARS}
-    env.update(TEST_ENV)
-    env.update(extra)
-    return env
 
 
 @dataclass
@@ -61,7 +49,7 @@ class Kernel:
 
     def __init__(self, env: dict[str, str] | None = None) -> None:
         self.manager = KernelManager(kernel_name="python3")
-        self.manager.start_kernel(env=env or kernel_env(), cwd=str(REPO_ROOT))
+        self.manager.start_kernel(env=env or independent_env(), cwd=str(REPO_ROOT))
         self.client = self.manager.blocking_client()
         self.client.start_channels()
         self.client.wait_for_ready(timeout=60)
@@ -121,15 +109,6 @@ class Kernel:
             self.manager.shutdown_kernel(now=True)
         with suppress(Exception):
             self.manager.cleanup_resources()
-
-
-def pid_alive(pid: int) -> bool:
-    """Return True if `pid` runs (a zombie counts as gone)."""
-    try:
-        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
-    except (OSError, IndexError):
-        return False
-    return state not in ("Z", "X")
 
 
 def course_pids(owner_pid: int) -> list[int]:

@@ -15,7 +15,7 @@ from rclpy.parameter_client import AsyncParameterClient
 
 from course_lib.errors import ExecutableNotFoundError, PackageNotFoundError
 from course_lib.paths import ROSJECT_DIR
-from course_lib.processes import OWNER_ENV, reap_orphans
+from course_lib.processes import OWNER_ENV, pid_alive, reap_orphans
 from course_lib.session import Session
 
 pytestmark = pytest.mark.ros
@@ -30,19 +30,11 @@ def velocity_of(session: Session, node: str = "/param_vel_node", timeout: float 
     return result.values[0].double_value
 
 
-def alive(pid: int) -> bool:
-    try:
-        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
-    except OSError:
-        return False
-    return state not in ("Z", "X")
-
-
 def wait_gone(pids: list[int], timeout: float) -> list[int]:
     deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline and any(alive(p) for p in pids):
+    while time.monotonic() < deadline and any(pid_alive(p) for p in pids):
         time.sleep(0.05)
-    return [p for p in pids if alive(p)]
+    return [p for p in pids if pid_alive(p)]
 
 
 def test_tutorial_node_declares_velocity_zero(session: Session) -> None:
@@ -130,7 +122,7 @@ def test_sigkilled_owner_leaves_no_child() -> None:
         text=True,
     ) as owner:
         pids = [int(p) for p in owner.stdout.readline().split()]
-        assert len(pids) == 3 and all(alive(p) for p in pids)
+        assert len(pids) == 3 and all(pid_alive(p) for p in pids)
         owner.send_signal(signal.SIGKILL)
         owner.wait()
     assert wait_gone(pids, timeout=2.0) == []

@@ -20,7 +20,7 @@ NODE = "/descriptor_vel_node"
 def lesson() -> Iterator[Lesson]:
     session = get_session()  # the `ros2` Python API talks through the process's session
     course_lesson = Lesson(11, session, load_course_settings())
-    course_lesson.world(show=False, config="lesson11_world.yaml")
+    course_lesson.world(show=False)
     node = session.run(
         "parameter_descriptors", "descriptor_vel", "--ros-args", "-p", "use_sim_time:=true"
     )

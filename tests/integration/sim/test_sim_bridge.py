@@ -38,7 +38,7 @@ NODES = {
     "robot_state_publisher",
     "camera_driver",
 }
-SCAN_TO_BOX_M = 0.9 + 0.064  # box face at x = 0.9, lidar at x = -0.064 of base_link
+SCAN_TO_BOX_M = 2.4 + 0.064  # box face at x = 2.4, lidar at x = -0.064 of base_link
 
 
 def _wait_until(predicate: Callable[[], Any], timeout: float = 10.0) -> Any:

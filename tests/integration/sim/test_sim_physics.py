@@ -13,7 +13,7 @@ from course_lib.sim.physics import Simulation
 
 pytestmark = pytest.mark.sim
 
-BOX_FACE_X = 0.9  # the default obstacle_box spans x 0.9..1.1, y -0.3..0.3
+BOX_FACE_X = 2.4  # the default obstacle_box spans x 2.4..2.6, y -0.3..0.3
 LIDAR_X = -0.064  # base_scan in base_link
 
 
@@ -69,7 +69,7 @@ def test_scan_sees_the_box_at_its_distance(sim: Simulation) -> None:
 
 def test_driving_into_the_box_stops_the_robot(sim: Simulation) -> None:
     sim.command(0.2, 0.0)
-    sim.run_for(8.0)
+    sim.run_for(14.0)  # 2.33 m to the box at 0.2 m/s, then pushing against it
     front_x = sim.pose().x + 0.069  # chassis front edge in base_link
     assert front_x == pytest.approx(BOX_FACE_X, abs=0.01)
     assert abs(sim.twist()[0]) < 0.02
