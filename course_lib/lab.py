@@ -6,8 +6,10 @@ import json
 import os
 import signal
 from collections.abc import Sequence
+from typing import Any
 
 from .domain import lease_domain
+from .machine.protocol import SOCKET_ENV
 from .paths import NOTEBOOKS_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
 from .processes import ChildProcess, pid_alive, spawn
 from .ros2 import start_daemon
@@ -29,6 +31,8 @@ def lab_argv(extra: Sequence[str] = ()) -> list[str]:
         *(["--allow-root"] if os.geteuid() == 0 else []),  # containers and CI run as root
         # A login shell would re-read /etc/profile and drop .venv/bin (and `ros2`) from PATH.
         f"--ServerApp.terminado_settings={_terminal_settings()}",
+        # a saved notebook keeps no live 3D view or widget (they would show errors reopened)
+        "--ContentsManager.pre_save_hook=course_lib.live_outputs.scrub_on_save",
         *extra,
         first,
     ]
@@ -51,6 +55,17 @@ def _terminal_settings() -> str:
     return json.dumps({"shell_command": [shell, "-i"]})
 
 
+def _start_machine(env: dict[str, str]) -> Any:
+    """Start the lab's machine service: it owns the world every notebook of the lab shares."""
+    from .machine.service import MachineService
+
+    def spawn_in_lab(argv: Sequence[str], *, name: str) -> ChildProcess:
+        return spawn(argv, name=name, env=env, cwd=REPO_ROOT)
+
+    path = runtime_dir() / f"lab-{os.getpid()}.sock"
+    return MachineService(path, spawn_in_lab).start()
+
+
 def run_lab(extra: Sequence[str] = ()) -> int:
     """Start the ros2 daemon and JupyterLab in a leased domain; stop both on Ctrl-C."""
     lease = lease_domain()
@@ -58,6 +73,8 @@ def run_lab(extra: Sequence[str] = ()) -> int:
     marker.write_text(str(lease.domain_id))
     env = session_env(lease.domain_id)
     env["COURSE_LAB"] = "1"
+    machine = _start_machine(env)
+    env[SOCKET_ENV] = str(machine.path)
     print(f"ROS 2 course: ROS_DOMAIN_ID={lease.domain_id} for this JupyterLab and its terminals.")
     children: list[ChildProcess] = [start_daemon(env)]
     signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop cleanly on SIGTERM too
@@ -71,6 +88,7 @@ def run_lab(extra: Sequence[str] = ()) -> int:
     finally:
         for child in reversed(children):
             child.stop(timeout=5.0)
+        machine.stop()
         marker.unlink(missing_ok=True)
         lease.release()
     return code or 0

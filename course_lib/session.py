@@ -11,7 +11,6 @@ import contextlib
 import os
 import threading
 from collections.abc import Mapping, Sequence
-from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 from . import ament
@@ -153,9 +152,15 @@ class Session:
         """Stop every child like Ctrl-C, all at once (exited ones: what is left of their group)."""
         with self._lock:
             children = list(self._children)
-        if children:
-            with ThreadPoolExecutor(max_workers=len(children)) as pool:
-                list(pool.map(lambda c: c.stop(timeout=timeout), children))
+        # plain threads: a pool cannot take work once the interpreter exits (atexit)
+        stoppers = [
+            threading.Thread(target=c.stop, kwargs={"timeout": timeout}, daemon=True)
+            for c in children
+        ]
+        for stopper in stoppers:
+            stopper.start()
+        for stopper in stoppers:
+            stopper.join()
 
     def close(self) -> None:
         """Stop the children and tear rclpy down in the order that never aborts; idempotent."""

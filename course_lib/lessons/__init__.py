@@ -38,6 +38,7 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
     Re-running stops the nodes the lesson started and puts the robot back at its start pose
     when the world runs, so the lesson starts over from a clean state.
     """
+    from ..machine.takeover import set_label
     from ..session import get_session
 
     if number not in TITLES:
@@ -45,6 +46,7 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
     settings = load_course_settings(settings_path)  # a ConfigError names file, line and key
     session = get_session()
     _prepare_ipython()
+    set_label(f"lesson {number}")
     previous = _lessons.get(number)
     lesson = Lesson(number, session, settings)
     if previous is not None and previous.session is session:

@@ -23,6 +23,17 @@ def _nodes() -> list[str]:
     return api.node_list()
 
 
+def _own_node(lesson: Any, executable: str = "param_vel") -> Any:
+    """Return the process of `executable` this lesson started, or None (never another's)."""
+    running = [c for c in lesson.session.children if c.name == executable]
+    return running[-1] if running else lesson.started.get(executable)
+
+
+def _own_node_running(lesson: Any, executable: str = "param_vel") -> bool:
+    child = _own_node(lesson, executable)
+    return child is not None and child.alive
+
+
 def _velocity(node: str = "/param_vel_node") -> float | None:
     from ..ros2 import api
 
@@ -59,10 +70,16 @@ def _lesson_1(lesson: Any) -> list[Check]:
 
 
 def _lesson_2(lesson: Any) -> list[Check]:
+    started = _own_node(lesson) is not None
     return [
         check(
+            "you started param_vel_node in this lesson",
+            started,
+            "run the `%ros2 run parameter_tests param_vel` cell.",
+        ),
+        check(
             "param_vel_node is gone, and its parameters with it",
-            "/param_vel_node" not in _nodes(),
+            started and not _own_node_running(lesson) and "/param_vel_node" not in _nodes(),
             'run the cell with `lesson.stop("param_vel")`.',
         ),
     ]
@@ -103,7 +120,7 @@ def _lesson_4(lesson: Any) -> list[Check]:
 def _lesson_5(lesson: Any) -> list[Check]:
     from ..ros2 import api
 
-    running = "/param_vel_node" in _nodes()
+    running = _own_node_running(lesson) and "/param_vel_node" in _nodes()
     speed = api.topic_echo_once("/cmd_vel").linear.x if running else None
     return [
         check("param_vel_node is running", running, "run the `%ros2 run` cell again."),
@@ -118,16 +135,22 @@ def _lesson_5(lesson: Any) -> list[Check]:
 def _lesson_6(lesson: Any) -> list[Check]:
     return [
         check(
-            "param_vel_node answers: velocity is 0.0",
-            _velocity() == 0.0,
+            "param_vel_node, started in this lesson, answers: velocity is 0.0",
+            _own_node_running(lesson) and _velocity() == 0.0,
             "start it with `%ros2 run parameter_tests param_vel`.",
         ),
     ]
 
 
+def _standing_still(lesson: Any) -> bool:
+    """Return True if this lesson's robot stands still now (measured on /odom)."""
+    world = lesson._world
+    return world is not None and world.alive and abs(world.odom().linear_mps) < 0.005
+
+
 def _lesson_7(lesson: Any) -> list[Check]:
     target = lesson.velocity
-    top = lesson.state.get("top_speed", 0.0)
+    top = lesson.state.get("top_speed", 0.0)  # measured by this lesson's drive_for()
     return [
         check(
             f"the robot drove at {target:g} m/s (measured on /odom)",
@@ -136,7 +159,7 @@ def _lesson_7(lesson: Any) -> list[Check]:
         ),
         check(
             "velocity is back to 0.0 and the robot stopped",
-            _velocity() == 0.0 and lesson.state.get("stopped", False),
+            _own_node_running(lesson) and _velocity() == 0.0 and _standing_still(lesson),
             "`%ros2 param set /param_vel_node velocity 0.0`, then the cell after it.",
         ),
     ]

@@ -27,11 +27,26 @@ class LaunchRun:
         return Text(f"ros2 launch stopped (Ctrl-C), exit code {code}.")
 
 
+def _executables(package: str, file: str, *args: str) -> list[str]:
+    """Return the names of the executables the launch file starts (read, not run)."""
+    from pathlib import Path
+
+    from ..launch import dry_run
+
+    return sorted({Path(plan.cmd[0]).name for plan in dry_run(package, file, *args).nodes})
+
+
 def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 4) -> LaunchRun:
     """Start `ros2 launch package file args`; wait for the node's first log line."""
     from ..launch import launch
+    from ..machine.takeover import remember, take_over
     from ..ros2 import api
 
+    executables = _executables(package, file, *args)
+    for executable in executables:
+        taken = take_over(executable)
+        if taken:
+            print(taken)
     handle = launch(package, file, *args, session=lesson.session)
     command = " ".join(["ros2", "launch", package, file, *args])
     if handle.wait_for(r"Velocity parameter is", timeout=15.0) is None:
@@ -40,6 +55,8 @@ def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 
         raise CourseError(
             f"The launch did not start its node.\n{tail}", hint="read the lines above."
         )
+    for executable in executables:
+        remember(handle.child, executable)  # stopping the launch stops its node
     lesson.state.setdefault("launches", []).append(handle)
     value = api.param_get("/param_vel_node", "velocity").value
     lesson.state.setdefault("launch_velocities", []).append(value)

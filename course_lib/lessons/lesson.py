@@ -81,6 +81,8 @@ class Lesson:
         world.drive(0.0, 0.0)
         world.reset()
         self._world = world
+        whose = "your lab's robot, the one every notebook shows" if world.shared else "the robot"
+        print(f"Put {whose} back at its start pose, standing still.")
         return world
 
     @property
@@ -107,21 +109,29 @@ class Lesson:
         return self.started[name]
 
     def stop_nodes(self) -> None:
-        """Stop every node this session started, except the simulation and its 3D view."""
-        keep = set()
+        """Stop every node this session started; the simulation and its 3D view keep running."""
+        keep: set[int] = set()
         if self._world is not None:
-            keep.add(id(self._world.process))
+            keep.add(self._world.process.pid)
+            if self._world.viewer is not None:
+                keep.add(self._world.viewer.process.pid)
         for child in self.session.children:
-            if id(child) not in keep and child.name not in ("mujoco_sim", "meshcat-server"):
+            if child.pid not in keep:
                 child.stop()
 
     def run(self, package: str, executable: str, *args: str, timeout: float = 10.0) -> LogLines:
         """Start a node like `ros2 run`; show its first log line, or how it failed."""
+        from ..machine.takeover import remember, take_over
+
         command = " ".join(shlex.quote(a) for a in ("ros2", "run", package, executable, *args))
+        taken = take_over(executable)
+        if taken:
+            print(taken)
         child = self.session.run(package, executable, *args, cwd=os.getcwd())
         self.started[executable] = child
         first = child.wait_for_line(lambda line: line.text.startswith("["), timeout)
         if first is not None and child.alive:
+            remember(child, executable)
             return LogLines([f"$ {command}", first.text])
         code = child.wait(timeout)
         last = [ln.text for ln in child.lines if ln.text.strip()][-1:]

@@ -16,16 +16,19 @@ def distance_m(a: Any, b: Any) -> float:
 
 
 def drive_report(lesson: Any, sim_seconds: float) -> Text:
-    """Let `sim_seconds` of simulated time pass; report the speed and distance from the start."""
+    """Let `sim_seconds` of simulated time pass; report the speed and the distance driven.
+
+    Both numbers are measured on this lesson's robot during this call only, so nothing from
+    before (another lesson's drive, an earlier run) can make them look right.
+    """
     world = lesson.current_world
-    now = world.odom()
-    after = world.wait_sim_time(now.time_s + sim_seconds)
-    start = world.settings.start_pose
-    moved = math.hypot(after.pose.x - start.x_m, after.pose.y - start.y_m)
+    before = world.odom()
+    after = world.wait_sim_time(before.time_s + sim_seconds)
+    driven = distance_m(before.pose, after.pose)
     lesson.state["top_speed"] = max(lesson.state.get("top_speed", 0.0), after.linear_mps)
     return Text(
         f"{sim_seconds:.1f} s of simulated time later: /odom says {after.linear_mps:.2f} m/s; "
-        f"the robot is {moved:.1f} m from its start."
+        f"the robot drove {driven:.1f} m in that time."
     )
 
 
@@ -33,5 +36,4 @@ def stop_report(lesson: Any, timeout: float = 10.0) -> Text:
     """Wait until /odom says the robot stands still; report it."""
     world = lesson.current_world
     reading = world.wait_for_odom(lambda r: abs(r.linear_mps) < 0.005, timeout)
-    lesson.state["stopped"] = True
     return Text(f"The robot stopped: /odom says {abs(reading.linear_mps):.2f} m/s.")

@@ -44,11 +44,20 @@ class CommandResult:
 
 
 def _background_run(cmd: list[str], name: str, ctx: Any) -> int:
-    """Start `ros2 run`'s executable as a session child and show its first lines."""
+    """Start `ros2 run`'s executable as a session child and show its first lines.
+
+    A node of the same executable that a lesson left running is stopped first (one line
+    says so, printed apart from the command's own output).
+    """
+    from ..machine.takeover import remember, take_over
     from ..session import get_session
 
+    taken = take_over(name)
+    if taken:
+        print(taken)
     child = get_session().spawn(cmd, name=name, cwd=ctx.cwd)
     child.wait_for_line(lambda _line: True, timeout=3.0)
+    remember(child, name)
     for line in child.lines[:5]:
         (ctx.console.err if line.stream == "stderr" else ctx.console.out)(line.text + "\n")
     return 0 if child.alive else int(child.returncode or 0)

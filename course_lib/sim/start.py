@@ -1,25 +1,25 @@
 """Start the simulated world from a notebook, once per session: `start_world()`.
 
-Lesson 3 calls it; the simulation and its meshcat server are children of the course session,
-so they end with it (or with the kernel, however it dies).
+Lesson 3 calls it. Inside a lab (`make lab`) the world belongs to the lab, so every notebook
+of the lab shows and drives the same robot; elsewhere the simulation and its meshcat server
+are children of the course session and end with it (or with the kernel, however it dies).
 """
 
 from __future__ import annotations
 
 import math
-import sys
 from pathlib import Path
 from typing import Any
 
 from ..config.simulation import SimulationSettings, load_simulation_settings
-from ..errors import CourseError, ProcessStartError
+from ..errors import CourseError
+from .launcher import start_world_processes
 from .world import World, _worlds, _worlds_lock
-from .world_process import READY_TEXT
 
 __all__ = ["start_world"]
 
 
-def _start(
+def _own_world(
     session: Any,
     settings: SimulationSettings,
     config: Path | None,
@@ -27,26 +27,47 @@ def _start(
     real_time_factor: float | None,
     timeout: float,
 ) -> World:
+    process, viewer = start_world_processes(
+        session.spawn,
+        config=config,
+        show=show,
+        real_time_factor=real_time_factor,
+        timeout=timeout,
+    )
+    world = World(session, settings, process, viewer)
+    try:
+        world.wait_for_odom(timeout=timeout)
+    except BaseException:
+        world.stop()
+        raise
+    return world
+
+
+def _lab_world(
+    session: Any, settings: SimulationSettings, config: Path | None, client: Any, timeout: float
+) -> World:
+    """Attach to the lab's world, which the lab starts on its first request."""
+    from ..machine.remote import LabProcess
     from ..viz.viewer import Viewer
 
-    viewer = Viewer.start(session) if show else None
-    argv = [sys.executable, "-m", "course_lib.sim"]
-    if config is not None:
-        argv += ["--config", str(config)]
-    if real_time_factor is not None:
-        argv += ["--real-time-factor", f"{real_time_factor:g}"]
-    if viewer is not None:
-        argv += ["--meshcat-url", viewer.zmq_url]
-    process = session.spawn(argv, name="mujoco_sim")
-    world = World(session, settings, process, viewer)
-    if process.wait_for_line(READY_TEXT, timeout) is None:
-        world.stop()
-        tail = "\n".join(line.text for line in process.lines[-8:])
-        raise ProcessStartError(
-            f"The simulation did not start within {timeout:g} s.\n{tail}",
-            hint="read the lines above; `make doctor` checks the setup.",
-        )
+    path = str(config.resolve()) if config is not None else None
+    answer = client.request("world.ensure", config=path, timeout=timeout)
+    if answer.get("note"):
+        print(answer["note"])
+    sim = LabProcess("mujoco_sim", answer["sim"]["tag"], client)
+    view = answer["viewer"]
+    viewer = Viewer(LabProcess("meshcat", view["tag"], client), view["zmq_url"], view["port"])
+    world = World(session, settings, sim, viewer, shared=True)
     world.wait_for_odom(timeout=timeout)
+    return world
+
+
+def _attached(session: Any) -> World | None:
+    """Return this session's world if it still runs (a lab's: and is still the lab's one)."""
+    world = _worlds.get(id(session))
+    if world is not None and not world.alive:
+        world.stop()  # a crashed simulation: also let go of its viewer before starting afresh
+        return None
     return world
 
 
@@ -58,15 +79,17 @@ def start_world(
     real_time_factor: float | None = None,
     timeout: float = 30.0,
 ) -> World:
-    """Start the simulated TurtleBot3 world (once per session) and show its 3D view.
+    """Start the simulated TurtleBot3 world (once per session, or the lab's) and show it.
 
     Args:
         session: the course session; the process's own one if None.
         show: start the meshcat view and display it in the current cell.
         config: simulation YAML; config/simulation.yaml if None.
-        real_time_factor: override the config's (0 = as fast as possible, for tests).
+        real_time_factor: override the config's (0 = as fast as possible, for tests); a
+            world of its own is started then, even inside a lab.
         timeout: seconds to wait for the world's first /odom.
     """
+    from ..machine import machine_client
     from ..session import get_session
 
     session = session or get_session()
@@ -78,13 +101,18 @@ def start_world(
             f"real_time_factor must be 0 or more, got {real_time_factor}",
             hint="use 1.0 for real time, 0 for as fast as possible.",
         )
+    client = machine_client() if rtf is None and show else None
     with _worlds_lock:
-        world = _worlds.get(id(session))
-        if world is not None and not world.alive:
-            world.stop()  # a crashed simulation: also end its viewer before starting afresh
+        world = _attached(session)
+        if world is not None and client is not None:
+            # the lab may have restarted its world (another notebook asked for another config)
+            world.stop()
             world = None
         if world is None:
-            world = _start(session, settings, path, show, real_time_factor, timeout)
+            if client is not None:
+                world = _lab_world(session, settings, path, client, timeout)
+            else:
+                world = _own_world(session, settings, path, show, real_time_factor, timeout)
             _worlds[id(session)] = world
     if show and world.viewer is not None:
         world.show()

@@ -46,7 +46,13 @@ class World:
     """A running simulation (and its 3D view) owned by a course session."""
 
     def __init__(
-        self, session: Any, settings: SimulationSettings, process: ChildProcess, viewer: Any = None
+        self,
+        session: Any,
+        settings: SimulationSettings,
+        process: ChildProcess,
+        viewer: Any = None,
+        *,
+        shared: bool = False,
     ) -> None:
         from geometry_msgs.msg import Twist
         from nav_msgs.msg import Odometry
@@ -58,6 +64,7 @@ class World:
         self.settings = settings
         self.process = process
         self.viewer = viewer
+        self.shared = shared  # the lab's world: stop() lets go of it, the lab keeps it running
         self._latest: OdomReading | None = None
         self._odom_msg: Any = None
         self._cond = threading.Condition()
@@ -228,7 +235,7 @@ class World:
         return self.viewer.show(height)
 
     def stop(self) -> None:
-        """Stop the simulation and its 3D view; idempotent."""
+        """Stop the simulation and its 3D view (the lab's: only let go of them); idempotent."""
         with _worlds_lock:
             if _worlds.get(id(self.session)) is self:
                 del _worlds[id(self.session)]

@@ -18,6 +18,7 @@ import re
 from typing import Any
 
 from ..errors import ProcessStartError
+from ..live_outputs import LIVE_MARK
 
 __all__ = ["Viewer", "viewer_url"]
 
@@ -45,11 +46,18 @@ class Viewer:
         self.port = port
 
     @classmethod
-    def start(cls, session: Any, timeout: float = 10.0) -> Viewer:
-        """Start a meshcat server bound to 127.0.0.1 on free ports, as a session child."""
+    def start(cls, spawn: Any, timeout: float = 10.0) -> Viewer:
+        """Start a meshcat server bound to 127.0.0.1 on free ports.
+
+        Args:
+            spawn: how to start a child, `spawn(argv, name=...)`: a session's `spawn` (the
+                kernel owns the viewer) or the lab's (the lab owns it); a session works too.
+            timeout: seconds to wait for the server's addresses.
+        """
         import sys
 
-        process = session.spawn([sys.executable, "-m", "course_lib.viz.server"], name="meshcat")
+        spawn = getattr(spawn, "spawn", spawn)
+        process = spawn([sys.executable, "-m", "course_lib.viz.server"], name="meshcat")
         line = process.wait_for_line(r"^web_url=", timeout)
         zmq = next((ln.text for ln in process.lines if ln.text.startswith("zmq_url=")), None)
         if line is None or zmq is None:
@@ -71,7 +79,8 @@ class Viewer:
         """Return the HTML of the view's iframe."""
         src = html.escape(self.url, quote=True)
         return (
-            f'<div style="height: {height}px; width: 100%; resize: both; overflow: hidden">'
+            f'<div {LIVE_MARK}="3D view" '
+            f'style="height: {height}px; width: 100%; resize: both; overflow: hidden">'
             f'<iframe src="{src}" title="3D view of the simulated robot" '
             'style="width: 100%; height: 100%; border: none"></iframe></div>'
         )

@@ -1,0 +1,50 @@
+"""Handles, in a kernel, on processes the lab owns: alive or not, their last lines.
+
+A kernel may look at the lab's world but never stops it: `stop()` only lets go of it, so
+one notebook shutting down never takes the robot away from another.
+"""
+
+from __future__ import annotations
+
+import time
+
+from ..processes import OutputLine, owner_tag
+from .client import MachineClient
+
+__all__ = ["LabProcess"]
+
+
+class LabProcess:
+    """A process of the lab's machine service, named by its owner tag."""
+
+    def __init__(self, name: str, tag: str, client: MachineClient) -> None:
+        self.name = name
+        self.tag = tag
+        self.pid = int(tag.split(":")[0])
+        self._client = client
+
+    def __repr__(self) -> str:
+        return f"<LabProcess {self.name} pid={self.pid} {'running' if self.alive else 'ended'}>"
+
+    @property
+    def alive(self) -> bool:
+        return owner_tag(self.pid) == self.tag
+
+    def _status(self) -> dict:
+        try:
+            return self._client.request("world.status", timeout=5.0)
+        except Exception:
+            return {"returncode": None, "tail": []}
+
+    @property
+    def returncode(self) -> int | None:
+        return None if self.alive else self._status().get("returncode")
+
+    @property
+    def lines(self) -> list[OutputLine]:
+        now = time.time()
+        return [OutputLine("stdout", text, now) for text in self._status().get("tail", [])]
+
+    def stop(self, *, timeout: float = 5.0) -> int | None:
+        """Let go of the process: the lab owns it and keeps it running for other notebooks."""
+        return None

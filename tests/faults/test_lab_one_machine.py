@@ -1,0 +1,113 @@
+"""A lab is one ROS 2 machine: lessons in several kernels share one robot and one node of a name.
+
+Real JupyterLab started as `make lab` starts it, real kernels with the lab's environment (as
+JupyterLab gives its kernels), the real simulation.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+
+import pytest
+from jupyter_kernels import Kernel, describe, pid_alive, wait_gone
+from lab_server import ARTIFACTS, LabServer
+
+from course_lib.machine.protocol import SOCKET_ENV
+from course_lib.paths import runtime_dir
+from course_lib.testing import independent_env
+
+pytestmark = [pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
+
+
+@pytest.fixture(scope="module")
+def lab() -> Iterator[LabServer]:
+    server = LabServer([], ARTIFACTS / "lab-one-machine")
+    try:
+        yield server
+    finally:
+        server.stop()
+
+
+@pytest.fixture
+def lab_kernel(lab: LabServer) -> Iterator:
+    """Start kernels with the environment JupyterLab gives the lab's kernels."""
+    kernels: list[Kernel] = []
+    socket = runtime_dir() / f"lab-{lab.process.pid}.sock"
+    env = independent_env(
+        ROS_DOMAIN_ID=str(lab.domain_id), COURSE_LAB="1", **{SOCKET_ENV: str(socket)}
+    )
+
+    def start() -> Kernel:
+        kernel = Kernel(env=env)
+        kernels.append(kernel)
+        return kernel
+
+    yield start
+    for kernel in kernels:
+        kernel.shutdown()
+
+
+def _world_pids(kernel: Kernel) -> tuple[int, int]:
+    out = kernel.ok("print(world.process.pid, world.viewer.process.pid)").text.split()
+    return int(out[0]), int(out[1])
+
+
+def test_lessons_in_two_kernels_share_one_robot_and_one_node(lab_kernel) -> None:
+    six, seven = lab_kernel(), lab_kernel()
+    six.ok("from course_lib.lessons import start\nlesson = start(6)\nworld = lesson.world()")
+    six.ok("%ros2 run parameter_tests param_vel")
+    opened = seven.ok(
+        "from course_lib.lessons import start\nlesson = start(7)\nworld = lesson.world()"
+    )
+    assert "your lab's robot" in opened.text, opened.everything
+    assert _world_pids(six) == _world_pids(seven), "two lessons, two worlds"
+
+    ran = seven.ok("%ros2 run parameter_tests param_vel")
+    assert "Stopped /param_vel_node (param_vel) that lesson 6 had started" in ran.text, ran.text
+    nodes = seven.ok("%ros2 node list").text
+    assert nodes.count("/param_vel_node\n") == 1, nodes
+    assert nodes.count("/mujoco\n") == 1, nodes
+    assert "share an exact name" not in nodes, nodes
+
+    seven.ok("%ros2 param set /param_vel_node velocity 0.2")
+    drove = seven.ok("lesson.drive_for(3.0)").text
+    found = re.search(r"says (\d\.\d\d) m/s; the robot drove (\d\.\d) m", drove)
+    assert found and found.groups() == ("0.20", "0.6"), drove
+
+    # Lesson 6's kernel goes away: the robot is the lab's, lesson 7 keeps it.
+    sim, viewer = _world_pids(seven)
+    six.shutdown()
+    assert pid_alive(sim) and pid_alive(viewer), "the lab's world died with lesson 6"
+    still = seven.ok("lesson.drive_for(1.0)").text
+    assert "says 0.20 m/s" in still, still
+
+    # Re-running lesson 7 from the top stops its node, keeps the world and its viewer.
+    again = seven.ok("lesson = start(7)\nworld = lesson.world()\nlesson.where()").text
+    assert _world_pids(seven) == (sim, viewer)
+    assert "speed 0.00 m/s" in again, again
+    assert "/param_vel_node" not in seven.ok("%ros2 node list").text
+
+
+def test_a_crashed_lab_world_is_restarted_in_place(lab_kernel) -> None:
+    kernel = lab_kernel()
+    kernel.ok("from course_lib.lessons import start\nlesson = start(3)\nworld = lesson.world()")
+    sim, _ = _world_pids(kernel)
+    kernel.ok("import os, signal\nos.kill(world.process.pid, signal.SIGKILL)")
+    assert wait_gone([sim], 5.0) == []
+    failed = kernel.run("lesson.where()")
+    assert "The simulation is not running" in failed.everything, failed.everything
+    again = kernel.ok("world = lesson.world()\nlesson.where()")
+    assert "The simulation had stopped" in again.text, again.text
+    assert "Robot at x" in again.text, again.text
+    assert _world_pids(kernel)[0] != sim
+
+
+def test_stopping_the_lab_stops_its_world(lab_kernel, lab: LabServer) -> None:
+    kernel = lab_kernel()
+    kernel.ok("from course_lib.lessons import start\nlesson = start(3)\nworld = lesson.world()")
+    sim, viewer = _world_pids(kernel)
+    kernel.shutdown()
+    lab.stop()
+    left = wait_gone([sim, viewer], 10.0)
+    assert not left, f"the lab's world outlived the lab:\n{describe(left)}"
