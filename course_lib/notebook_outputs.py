@@ -18,6 +18,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from .live_outputs import scrub_live_outputs
 from .paths import NOTEBOOKS_DIR, REPO_ROOT
 from .testing import TEST_ENV
 
@@ -71,6 +72,7 @@ def clean_notebook(nb: Any, old: Any | None, *, keep_live: bool = True) -> Any:
         if keep_live and live and before is not None and before.outputs:
             cell.outputs = copy.deepcopy(before.outputs)
         cell.outputs = [_clean_output(o, rules) for o in cell.outputs]
+    scrub_live_outputs(nb)  # a stored 3D view or widget would only show an error reopened
     return nb
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import time
 
 import meshcat
 import mujoco
@@ -20,23 +21,34 @@ class LiveView:
     """Draw the model once, then send one transform per moving body on `update`."""
 
     def __init__(self, zmq_url: str, model: mujoco.MjModel, data: mujoco.MjData) -> None:
-        with contextlib.redirect_stdout(io.StringIO()):  # meshcat prints in its constructor
-            self.visualizer = meshcat.Visualizer(zmq_url=zmq_url)
-        socket = self.visualizer.window.zmq_socket
-        socket.setsockopt(zmq.RCVTIMEO, _TIMEOUT_MS)
-        socket.setsockopt(zmq.SNDTIMEO, _TIMEOUT_MS)
-        socket.setsockopt(zmq.LINGER, 0)
+        self.zmq_url = zmq_url
+        self.visualizer = self._connect()
         self._paths = body_paths(model)
         self._moving = moving_bodies(model)
         self.updates = 0
         self.failed = False
+        self._misses = 0
+        self._retry_at = 0.0
         self.visualizer["mujoco"].delete()
         for command in [*scene_commands(model, data), *camera_commands()]:
             self.visualizer.window.send(command)
 
+    def _connect(self) -> meshcat.Visualizer:
+        with contextlib.redirect_stdout(io.StringIO()):  # meshcat prints in its constructor
+            visualizer = meshcat.Visualizer(zmq_url=self.zmq_url)
+        socket = visualizer.window.zmq_socket
+        socket.setsockopt(zmq.RCVTIMEO, _TIMEOUT_MS)
+        socket.setsockopt(zmq.SNDTIMEO, _TIMEOUT_MS)
+        socket.setsockopt(zmq.LINGER, 0)
+        return visualizer
+
     def update(self, data: mujoco.MjData) -> bool:
-        """Send the moving bodies' poses; False (and stop trying) once the server is gone."""
-        if self.failed:
+        """Send the moving bodies' poses; False while the server does not answer.
+
+        A busy server (several views open on a loaded machine) may miss the timeout once: the
+        request socket is then replaced, so the view catches up instead of freezing for good.
+        """
+        if time.monotonic() < self._retry_at:
             return False
         window = self.visualizer.window
         try:
@@ -46,7 +58,12 @@ class LiveView:
                 )
         except zmq.ZMQError:
             self.failed = True
+            self._misses += 1  # back off, so a server that is gone stalls the physics rarely
+            self._retry_at = time.monotonic() + min(30.0, 0.5 * 2**self._misses)
+            self.close()
+            self.visualizer = self._connect()  # a REQ socket that timed out cannot send again
             return False
+        self.failed, self._misses = False, 0
         self.updates += 1
         return True
 

@@ -21,6 +21,7 @@ class SpeedPlot:
         self.session = session
         self.samples: deque[tuple[float, float]] = deque(maxlen=window)
         self.marks: list[tuple[float, str]] = []
+        self.time_jumps = 0  # simulated time going back: the world restarted, or two worlds
         self._lock = threading.Lock()
         self._stop = threading.Event()
         self._image: Any = None
@@ -34,6 +35,9 @@ class SpeedPlot:
     def _on_odom(self, msg: Any) -> None:
         stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
         with self._lock:
+            if self.samples and stamp < self.samples[-1][0]:
+                self.time_jumps += 1
+                self.marks.append((stamp, "simulated time went back"))
             self.samples.append((stamp, msg.twist.twist.linear.x))
 
     def _on_event(self, msg: Any) -> None:

@@ -31,3 +31,44 @@ def run_cell(page, source: str) -> None:  # type: ignore[no-untyped-def]
     cell.locator(".jp-InputArea-editor").click()
     page.keyboard.press("Shift+Enter")
     page.wait_for_function(_BUSY_PROMPTS, timeout=60_000)
+
+
+def open_notebook(page, base_url: str, path: str, token: str) -> None:  # type: ignore[no-untyped-def]
+    """Open another notebook in a new tab of the same JupyterLab (the others stay open)."""
+    page.goto(f"{base_url}/lab/tree/{path}?token={token}")
+    page.locator(".jp-NotebookPanel:visible .jp-CodeCell").first.wait_for(timeout=60_000)
+    idle = page.get_by_text("Python 3 (ipykernel) | Idle")
+    choose = page.get_by_role("button", name="Select", exact=True)
+    idle.or_(choose).first.wait_for(timeout=60_000)
+    if choose.is_visible():  # a slow kernel list makes JupyterLab ask; a learner picks Python 3
+        choose.click()
+
+
+def add_cell(page, code: str) -> str:  # type: ignore[no-untyped-def]
+    """Add a cell at the end of the visible notebook, run it, return its output's text."""
+    cells = page.locator(".jp-NotebookPanel:visible .jp-CodeCell")
+    count = cells.count()
+    cells.last.locator(".jp-InputArea-editor").click()
+    page.keyboard.press("Escape")
+    page.keyboard.press("b")
+    page.keyboard.press("Enter")
+    page.keyboard.type(code)
+    page.keyboard.press("Shift+Enter")
+    page.wait_for_function(_BUSY_PROMPTS, timeout=60_000)
+    return cells.nth(count).locator(".jp-OutputArea").inner_text()
+
+
+def shut_down_kernel_of(page, base_url: str, token: str, name: str) -> int:  # type: ignore[no-untyped-def]
+    """Shut down the kernel of the open notebook whose path contains `name`; return how many."""
+    return page.evaluate(
+        """async ([base, token, name]) => {
+          const auth = {headers: {Authorization: `token ${token}`}};
+          const sessions = await (await fetch(`${base}/api/sessions`, auth)).json();
+          const mine = sessions.filter((s) => s.path.includes(name));
+          for (const s of mine) {
+            await fetch(`${base}/api/sessions/${s.id}`, {...auth, method: 'DELETE'});
+          }
+          return mine.length;
+        }""",
+        [base_url, token, name],
+    )

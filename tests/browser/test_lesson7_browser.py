@@ -2,49 +2,20 @@
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import pytest
 from notebook_ui import run_all_cells, run_cell, wait_all_ran
 from pixels import changed_fraction, is_blank
 from terminal import Terminal
+from view import MOVED, VIEW
+from view import change_within as _change_within
+from view import shot as _shot
+from view import wait_still as _wait_still
 
 pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 
 LESSONS = ["07_move_the_robot.ipynb"]
-VIEW = 'iframe[title="3D view of the simulated robot"]'
-MOVED = 0.002  # share of the view's pixels that change when the robot drives for a second
-
-
-def _shot(page, folder: Path, name: str) -> tuple[bytes, Path]:  # type: ignore[no-untyped-def]
-    path = folder / f"{name}.png"
-    png = page.locator(VIEW).screenshot(path=str(path))
-    return png, path
-
-
-def _change_within(page, folder: Path, first: bytes, *, seconds: int) -> tuple[float, Path]:  # type: ignore[no-untyped-def]
-    """Screenshot the view once a second until it differs from `first`; return the change."""
-    change, path = 0.0, folder / "view_moving_1.png"
-    for _ in range(seconds):
-        page.wait_for_timeout(1000)  # screenshots a second apart (what is measured)
-        later, path = _shot(page, folder, "view_moving_1")
-        change = changed_fraction(first, later)
-        if change > MOVED:
-            break
-    return change, path
-
-
-def _wait_still(page, folder: Path, timeout: float = 10.0) -> float:  # type: ignore[no-untyped-def]
-    """Wait until two views a second apart match; return the last change measured."""
-    deadline = time.monotonic() + timeout
-    before, _ = _shot(page, folder, "stopping_0")
-    change = 1.0
-    while change > MOVED / 4 and time.monotonic() < deadline:
-        page.wait_for_timeout(1000)  # the interval measured, not a wait for a condition
-        after, _ = _shot(page, folder, "stopping_1")
-        change, before = changed_fraction(before, after), after
-    return change
 
 
 def test_lesson7_drives_the_robot_in_the_3d_view(page, artifacts: Path) -> None:

@@ -111,3 +111,38 @@ def test_stopping_the_lab_stops_its_world(lab_kernel, lab: LabServer) -> None:
     lab.stop()
     left = wait_gone([sim, viewer], 10.0)
     assert not left, f"the lab's world outlived the lab:\n{describe(left)}"
+
+
+def test_the_lab_stores_no_live_output(lab: LabServer) -> None:
+    """Saving through the lab's Jupyter server (as JupyterLab does) keeps placeholders."""
+    import json
+    import urllib.request
+
+    import nbformat
+
+    from course_lib.live_outputs import PLACEHOLDERS
+    from course_lib.paths import REPO_ROOT
+
+    notebook = nbformat.v4.new_notebook()
+    cell = nbformat.v4.new_code_cell("plot = lesson.speed_plot()")
+    widget = {"model_id": "0123", "version_major": 2, "version_minor": 0}
+    cell.outputs = [
+        nbformat.v4.new_output(
+            "display_data",
+            data={"application/vnd.jupyter.widget-view+json": widget, "text/plain": "Plot"},
+        )
+    ]
+    notebook.cells.append(cell)
+    path = (lab.folder / "saved.ipynb").relative_to(REPO_ROOT)
+    body = json.dumps({"type": "notebook", "format": "json", "content": notebook}).encode()
+    request = urllib.request.Request(
+        f"{lab.base_url}/api/contents/{path}",
+        data=body,
+        method="PUT",
+        headers={"Authorization": f"token {lab.token}", "Content-Type": "application/json"},
+    )
+    with urllib.request.urlopen(request, timeout=30) as answer:
+        assert answer.status in (200, 201)
+    stored = nbformat.read(REPO_ROOT / path, as_version=4)
+    outputs = stored.cells[0].outputs
+    assert [o.data["text/plain"] for o in outputs] == [PLACEHOLDERS["widget"]], outputs

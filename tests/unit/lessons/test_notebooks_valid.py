@@ -15,3 +15,15 @@ NOTEBOOKS = sorted(NOTEBOOKS_DIR.glob("*.ipynb"))
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
 def test_notebook_is_valid(path: Path) -> None:
     nbformat.validate(nbformat.read(path, as_version=4))
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
+def test_stored_notebooks_hold_no_live_output(path: Path) -> None:
+    """A stored 3D view or widget shows an error when reopened: only placeholders are kept."""
+    from course_lib.live_outputs import is_live
+
+    notebook = nbformat.read(path, as_version=4)
+    live = [
+        n for n, cell in enumerate(notebook.cells) for o in cell.get("outputs", []) if is_live(o)
+    ]
+    assert not live, f"{path.name}: live outputs stored in cells {live}; run `make notebooks`"
