@@ -11,7 +11,7 @@ import yaml
 from ..paths import ROSJECT_DIR
 from .report import Check, check
 
-__all__ = ["run_checks"]
+__all__ = ["installed_checks", "run_checks"]
 
 TUTORIAL_YAML = ROSJECT_DIR / "parameter_tests" / "config" / "param_vel_node.yaml"
 NODE_SOURCE = ROSJECT_DIR / "parameter_tests" / "parameter_tests" / "parameter_tests_node.py"
@@ -43,12 +43,8 @@ def _velocity(node: str = "/param_vel_node") -> float | None:
         return None
 
 
-def _lesson_1(lesson: Any) -> list[Check]:
-    from .. import ament
-    from .environment import versions
-
-    found = versions()
-    exes = ament.package_executables("parameter_tests", lesson.session.env)
+def installed_checks(found: dict[str, str]) -> list[Check]:
+    """Return lesson 1's checks of what is installed, from `environment.versions()`."""
     return [
         check("ROS 2 Jazzy's rclpy is installed", found["ROS 2 distro"] == "jazzy"),
         check(
@@ -56,6 +52,20 @@ def _lesson_1(lesson: Any) -> list[Check]:
             "missing" not in (found["MuJoCo"], found["meshcat"]),
             "run `make setup` in a terminal, then restart the kernel.",
         ),
+    ]
+
+
+def _lesson_1(lesson: Any) -> list[Check]:
+    from .. import ament
+    from ..errors import CourseError
+    from .environment import versions
+
+    try:
+        exes = ament.package_executables("parameter_tests", lesson.session.env)
+    except CourseError:  # the package is not in the workspace at all
+        exes = []
+    return [
+        *installed_checks(versions()),
         check(
             "your session talks ROS 2 in its own domain",
             not lesson.session.closed,
@@ -233,14 +243,23 @@ def _lesson_10(lesson: Any) -> list[Check]:
 
 
 def _lesson_11(lesson: Any) -> list[Check]:
+    from ..errors import CourseError
     from ..ros2 import api
 
-    rejected = api.param_set("/descriptor_vel_node", "velocity", 0.3)
-    read_only = api.param_set("/descriptor_vel_node", "max_travel", 9.0)
+    try:  # both must be refused by the running node itself, not fail for its absence
+        rejected = api.param_set("/descriptor_vel_node", "velocity", 0.3)
+        read_only = api.param_set("/descriptor_vel_node", "max_travel", 9.0)
+    except CourseError:
+        rejected = read_only = None
+    running = "run the `%ros2 run parameter_descriptors descriptor_vel` cell."
     saved = lesson.state.get("saved_params")
     return [
-        check("the range refuses velocity 0.3 (max 0.26)", not rejected.successful),
-        check("max_travel is read-only", not read_only.successful),
+        check(
+            "the range refuses velocity 0.3 (max 0.26)",
+            rejected is not None and not rejected.successful,
+            running,
+        ),
+        check("max_travel is read-only", read_only is not None and not read_only.successful),
         check(
             "the panel saved a params file ROS can load",
             saved is not None and saved.exists(),

@@ -1,0 +1,106 @@
+"""Every self-check can fail: each is run here on a real situation where the learner is not done.
+
+The lessons' notebooks (nbval) show the same checks passing; these show that a check which
+passes was earned by this lesson's own node, robot and files.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from course_lib.lessons import Lesson, load_course_settings, start
+from course_lib.paths import REPO_ROOT
+from course_lib.ros2 import api
+from course_lib.session import Session, get_session
+
+pytestmark = [pytest.mark.ros, pytest.mark.slow]
+
+
+def _failed(lesson: Lesson) -> set[str]:
+    return {c.what for c in lesson.self_check().checks if not c.passed}
+
+
+@pytest.fixture
+def stop_nodes() -> Iterator[None]:
+    yield
+    get_session().stop_children()
+
+
+def test_lesson1_fails_without_jazzy_mujoco_or_meshcat(tmp_path: Path) -> None:
+    """A Python that sees none of the course's packages (but its own code and PyYAML)."""
+    import yaml
+
+    (tmp_path / "course_lib").symlink_to(REPO_ROOT / "course_lib")
+    (tmp_path / "yaml").symlink_to(Path(yaml.__file__).parent)
+    code = (
+        "import sys; sys.path[:0] = [sys.argv[1]]\n"
+        "from course_lib.lessons.checks import installed_checks\n"
+        "from course_lib.lessons.environment import versions\n"
+        "print([c.passed for c in installed_checks(versions())])\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "ROS_DISTRO"}
+    out = subprocess.run(
+        [sys.executable, "-S", "-c", code, str(tmp_path)],
+        capture_output=True, text=True, env=env, check=True,
+    )  # fmt: skip
+    assert out.stdout.strip() == "[False, False]", out.stdout + out.stderr
+
+
+def test_lesson1_fails_for_a_closed_session_without_workspace() -> None:
+    session = Session()
+    session.close()
+    session.env = {**session.env, "AMENT_PREFIX_PATH": ""}
+    lesson = Lesson(1, session, load_course_settings())
+    assert _failed(lesson) == {
+        "your session talks ROS 2 in its own domain",
+        "the workspace is built: parameter_tests has param_vel",
+    }
+
+
+def test_lesson2_fails_when_the_node_was_never_started_or_still_runs(stop_nodes) -> None:
+    lesson = start(2)
+    assert "you started param_vel_node in this lesson" in _failed(lesson)
+    lesson.run("parameter_tests", "param_vel")
+    assert _failed(lesson) == {"param_vel_node is gone, and its parameters with it"}
+
+
+def test_lesson3_fails_without_the_world() -> None:
+    lesson = start(3)
+    assert "the simulation is running" in _failed(lesson)
+
+
+def test_lessons_5_and_6_fail_without_their_own_node(stop_nodes) -> None:
+    five = start(5)
+    assert "param_vel_node is running" in _failed(five)
+    six = start(6)
+    assert _failed(six)  # no node at all
+    six.run("parameter_tests", "param_vel")
+    assert not _failed(six)
+    assert api.param_set("/param_vel_node", "velocity", 0.3).successful
+    assert _failed(six) == {"param_vel_node, started in this lesson, answers: velocity is 0.0"}
+
+
+@pytest.mark.sim
+def test_lesson7_fails_when_the_robot_did_not_drive_or_still_drives(stop_nodes) -> None:
+    lesson = start(7)
+    lesson.world(show=False)
+    lesson.run("parameter_tests", "param_vel")
+    assert f"the robot drove at {lesson.velocity:g} m/s (measured on /odom)" in _failed(lesson)
+    assert api.param_set("/param_vel_node", "velocity", lesson.velocity).successful
+    lesson.drive_for(1.0)
+    assert _failed(lesson) == {"velocity is back to 0.0 and the robot stopped"}
+    assert api.param_set("/param_vel_node", "velocity", 0.0).successful
+    lesson.wait_until_stopped()
+    assert not _failed(lesson)
+    lesson.current_world.stop()
+
+
+def test_lesson11_fails_without_its_node_panel_or_exercise() -> None:
+    lesson = start(11)
+    assert _failed(lesson) == {c.what for c in lesson.self_check().checks}
