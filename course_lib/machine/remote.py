@@ -1,7 +1,7 @@
 """Handles, in a kernel, on processes the lab owns: alive or not, their last lines.
 
-A kernel may look at the lab's world but never stops it: `stop()` only lets go of it, so
-one notebook shutting down never takes the robot away from another.
+A notebook shutting down never stops them (they are not its children); `stop()` asks the lab
+to stop its world, as a learner's `world.stop()` means.
 """
 
 from __future__ import annotations
@@ -46,5 +46,7 @@ class LabProcess:
         return [OutputLine("stdout", text, now) for text in self._status().get("tail", [])]
 
     def stop(self, *, timeout: float = 5.0) -> int | None:
-        """Let go of the process: the lab owns it and keeps it running for other notebooks."""
-        return None
+        """Ask the lab to stop its world (simulation and view); return the exit code if known."""
+        if self.alive:
+            self._client.request("world.stop", timeout=max(timeout, 15.0))
+        return self.returncode

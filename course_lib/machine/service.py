@@ -60,6 +60,7 @@ class MachineService:
                 r.get("config"), float(r.get("timeout", 30))
             ),
             "world.status": lambda _r: self.world.status(),
+            "world.stop": lambda _r: self.world.stop() or {},
             "node.take": self._take,
             "node.register": self._register,
             "node.list": lambda _r: {"nodes": [rec.as_dict() for rec in self.nodes.records()]},

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import threading
 
-from ..processes import ChildProcess, owner_tag
+from ..processes import ChildProcess, OutputLine, owner_tag
 from .client import machine_client
 from .register import NodeRecord, NodeRegister, node_name_from_log
 
@@ -51,10 +51,25 @@ def take_over(executable: str) -> str:
 
 def remember(child: ChildProcess, executable: str) -> None:
     """Register `child` as the lessons' running `executable` (its node name from its log)."""
+    label = _label()
+    node = next((n for n in map(node_name_from_log, (ln.text for ln in child.lines)) if n), "")
+    _register(child, executable, node, label)
+    if node:
+        return
+
+    def learn_name(line: OutputLine) -> None:  # a slow node logs its name later
+        name = node_name_from_log(line.text)
+        if name:
+            child.remove_listener(learn_name)
+            _register(child, executable, name, label)
+
+    child.add_listener(learn_name)
+
+
+def _register(child: ChildProcess, executable: str, node: str, label: str) -> None:
     if not child.alive:
         return
-    node = next((n for n in map(node_name_from_log, (ln.text for ln in child.lines)) if n), "")
-    record = NodeRecord(executable, node, owner_tag(child.pid), _label())
+    record = NodeRecord(executable, node, owner_tag(child.pid), label)
     client = machine_client()
     if client is not None:
         client.request("node.register", **record.as_dict())

@@ -27,6 +27,7 @@ class WorldKeeper:
         self._sim: ChildProcess | None = None
         self._viewer: Any = None
         self._config: str | None = None
+        self._last: ChildProcess | None = None
 
     def _why_restart(self, config: str | None) -> str:
         if self._sim is None:
@@ -73,20 +74,21 @@ class WorldKeeper:
     def status(self) -> dict[str, Any]:
         """Say whether the world runs, how it ended, and its last lines."""
         with self._lock:
-            sim = self._sim
+            sim = self._sim or self._last
             if sim is None:
                 return {"running": False, "returncode": None, "tail": []}
             tail = [line.text for line in sim.lines[-_TAIL_LINES:]]
             return {"running": sim.alive, "returncode": sim.returncode, "tail": tail}
 
     def stop(self) -> None:
-        """Stop the world and its view (`make stop`, the lab shutting down); idempotent."""
+        """Stop the world and its view (a learner's `world.stop()`, the lab ending); idempotent."""
         with self._lock:
             self._stop_locked()
 
     def _stop_locked(self) -> None:
         if self._sim is not None:
             self._sim.stop()
+            self._last = self._sim  # its exit code and last lines stay readable
         if self._viewer is not None:
             self._viewer.stop()
         self._sim = self._viewer = None

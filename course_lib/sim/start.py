@@ -66,7 +66,10 @@ def _attached(session: Any) -> World | None:
     """Return this session's world if it still runs (a lab's: and is still the lab's one)."""
     world = _worlds.get(id(session))
     if world is not None and not world.alive:
-        world.stop()  # a crashed simulation: also let go of its viewer before starting afresh
+        if world.shared:
+            world.detach()  # the lab restarts its world itself, and says why
+        else:
+            world.stop()  # a crashed simulation: also end its viewer before starting afresh
         return None
     return world
 
@@ -106,7 +109,7 @@ def start_world(
         world = _attached(session)
         if world is not None and client is not None:
             # the lab may have restarted its world (another notebook asked for another config)
-            world.stop()
+            world.detach()
             world = None
         if world is None:
             if client is not None:

@@ -64,7 +64,7 @@ class World:
         self.settings = settings
         self.process = process
         self.viewer = viewer
-        self.shared = shared  # the lab's world: stop() lets go of it, the lab keeps it running
+        self.shared = shared  # the lab's world, which every notebook of the lab shows
         self._latest: OdomReading | None = None
         self._odom_msg: Any = None
         self._cond = threading.Condition()
@@ -235,13 +235,17 @@ class World:
         return self.viewer.show(height)
 
     def stop(self) -> None:
-        """Stop the simulation and its 3D view (the lab's: only let go of them); idempotent."""
-        with _worlds_lock:
-            if _worlds.get(id(self.session)) is self:
-                del _worlds[id(self.session)]
+        """Stop the simulation and its 3D view (in a lab: the lab's, for every notebook)."""
         self.process.stop()
         if self.viewer is not None:
             self.viewer.stop()
+        self.detach()
+
+    def detach(self) -> None:
+        """Stop listening to the world and let go of it, leaving it running; idempotent."""
+        with _worlds_lock:
+            if _worlds.get(id(self.session)) is self:
+                del _worlds[id(self.session)]
         if not self.session.closed:
             node = self.session.node
             with contextlib.suppress(Exception):  # the session may be closing concurrently
