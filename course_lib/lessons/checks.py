@@ -14,7 +14,6 @@ from .report import Check, check
 __all__ = ["installed_checks", "run_checks"]
 
 TUTORIAL_YAML = ROSJECT_DIR / "parameter_tests" / "config" / "param_vel_node.yaml"
-NODE_SOURCE = ROSJECT_DIR / "parameter_tests" / "parameter_tests" / "parameter_tests_node.py"
 
 
 def _nodes() -> list[str]:
@@ -112,16 +111,21 @@ def _lesson_3(lesson: Any) -> list[Check]:
 
 def _lesson_4(lesson: Any) -> list[Check]:
     from .. import ament
-    from ..launch.declared import declared_parameters
+    from ..errors import CourseError
+    from ..launch.declared import declared_parameters, node_sources
 
-    exe = ament.find_executable("parameter_tests", "param_vel", lesson.session.env)
-    declared = declared_parameters(str(exe))
-    velocity = declared.get("velocity")
-    source = NODE_SOURCE.read_text(encoding="utf-8")
+    try:  # the installed node the learner runs, not the file they may be editing
+        exe = str(ament.find_executable("parameter_tests", "param_vel", lesson.session.env))
+    except CourseError:
+        exe = ""
+    velocity = declared_parameters(exe).get("velocity") if exe else None
+    sources = node_sources(exe) if exe else []
+    source = sources[0].read_text(encoding="utf-8") if sources else ""
     return [
         check(
             "the node declares `velocity` as a double, default 0.0",
             velocity is not None and velocity.type == "double" and velocity.default == 0.0,
+            "compare the declare_parameter line with the tutorial's; then `make setup`.",
         ),
         check("a 0.1 s timer publishes it", re.search(r"create_timer\(0\.1,", source) is not None),
     ]

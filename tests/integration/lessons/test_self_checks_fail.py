@@ -104,3 +104,30 @@ def test_lesson7_fails_when_the_robot_did_not_drive_or_still_drives(stop_nodes) 
 def test_lesson11_fails_without_its_node_panel_or_exercise() -> None:
     lesson = start(11)
     assert _failed(lesson) == {c.what for c in lesson.self_check().checks}
+
+
+def test_lesson4_fails_for_a_node_that_declares_an_integer_and_a_slow_timer(tmp_path) -> None:
+    """A workspace whose param_vel declares `velocity` as 1 and ticks every 0.5 s."""
+    (tmp_path / "share/ament_index/resource_index/packages").mkdir(parents=True)
+    (tmp_path / "share/ament_index/resource_index/packages/parameter_tests").touch()
+    exe = tmp_path / "lib/parameter_tests/param_vel"
+    exe.parent.mkdir(parents=True)
+    exe.write_text(
+        "#!/usr/bin/env python3\n"
+        "self.declare_parameter('velocity', 1)\n"
+        "self.timer = self.create_timer(0.5, self.timer_callback)\n"
+    )
+    exe.chmod(0o755)
+    lesson = start(4)
+    assert not _failed(lesson)
+    lesson.session.env = {**lesson.session.env, "AMENT_PREFIX_PATH": str(tmp_path)}
+    try:
+        assert _failed(lesson) == {
+            "the node declares `velocity` as a double, default 0.0",
+            "a 0.1 s timer publishes it",
+        }
+    finally:
+        lesson.session.env = {
+            **lesson.session.env,
+            "AMENT_PREFIX_PATH": os.environ["AMENT_PREFIX_PATH"],
+        }
