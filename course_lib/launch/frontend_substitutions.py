@@ -5,15 +5,16 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from .substitution import Substitution, TextSubstitution
 from .substitutions import (
+    Command,
     EnvironmentVariable,
     ExecutableInPackage,
+    FindExecutable,
     FindPackagePrefix,
     FindPackageShare,
     LaunchConfiguration,
     PythonExpression,
-    Substitution,
-    TextSubstitution,
     ThisLaunchFile,
     ThisLaunchFileDir,
 )
@@ -77,6 +78,18 @@ def _eval(args: Args) -> Substitution:
     return PythonExpression(args[0])
 
 
+def _command(args: Args) -> Substitution:
+    if not 1 <= len(args) <= 2:
+        raise ValueError("command substitution expects 1 or 2 arguments")
+    return Command(args[0], on_stderr=args[1] if len(args) > 1 else "fail")
+
+
+def _find_exec(args: Args) -> Substitution:
+    if len(args) != 1:
+        raise AttributeError("find-exec substitution expects 1 argument")
+    return FindExecutable(name=args[0])
+
+
 _MAKERS: dict[str, Callable[[Args], Substitution]] = {
     "var": _var,
     "env": _env,
@@ -87,6 +100,8 @@ _MAKERS: dict[str, Callable[[Args], Substitution]] = {
     "dirname": _no_args(ThisLaunchFileDir, "dirname"),
     "filename": _no_args(ThisLaunchFile, "filename"),
     "eval": _eval,
+    "command": _command,
+    "find-exec": _find_exec,
 }
 
 
