@@ -22,6 +22,7 @@ from .loading import (
 from .node import Node, PushRosNamespace, SetParameter, SetParametersFromFile, SetRemap
 from .parameters import ParameterFile, ParameterValue
 from .process import ExecuteProcess
+from .substitution import TextSubstitution
 
 __all__ = ["load_frontend_file", "parse_action", "parse_substitution"]
 
@@ -184,6 +185,14 @@ def _process_kwargs(entity: Entity) -> dict[str, Any]:
     delay = entity.get_attr("respawn_delay", optional=True)
     if delay is not None:
         kwargs["respawn_delay"] = float(delay)
+    on_exit = entity.get_attr("on_exit", optional=True)
+    if on_exit is not None:
+        if on_exit != "shutdown":
+            raise ValueError(
+                f"Attribute on_exit of Entity node expected to be shutdown but got `{on_exit}`"
+                "Other on_exit actions not yet supported"
+            )
+        kwargs["on_exit"] = [Shutdown()]
     env = entity.get_attr("env", data_type=list, optional=True) or []
     if env:
         kwargs["additional_env"] = {
@@ -193,7 +202,34 @@ def _process_kwargs(entity: Entity) -> dict[str, Any]:
 
 
 def _cmdline(text: Any) -> list[Any]:
-    return [parse_substitution(part) for part in shlex.split(str(text))]
+    """Split a command line into arguments, keeping `$(...)` inside the argument it is in."""
+    args: list[list[Any]] = []
+    current: list[Any] = []
+
+    def close() -> None:
+        nonlocal current
+        if current:
+            args.append(current)
+            current = []
+
+    for sub in parse_substitution(str(text)):
+        if not isinstance(sub, TextSubstitution):
+            current.append(sub)
+            continue
+        if sub.text[:1].isspace():
+            close()
+        try:
+            tokens = shlex.split(sub.text)
+        except ValueError:  # a quote closed after a substitution: split on spaces only
+            tokens = sub.text.split()
+        for index, token in enumerate(tokens):
+            current.append(TextSubstitution(text=token))
+            if index < len(tokens) - 1:
+                close()
+        if not tokens or sub.text[-1:].isspace():
+            close()
+    close()
+    return args
 
 
 def _node(entity: Entity) -> Node:

@@ -35,6 +35,7 @@ from . import (
     substitution,
     substitutions,
 )
+from .loading import CourseUnavailableError
 from .real_names import REAL_NAMES
 
 __all__ = ["MODULE_NAMES", "launch_modules"]
@@ -140,11 +141,9 @@ def _table() -> dict[str, dict[str, Any]]:
 MODULE_NAMES = tuple(_table())
 
 
-def _unavailable(module: str, what: str) -> loading.CourseUnavailableError:
-    return loading.CourseUnavailableError(
-        f"{what} is not available in this course (its launch implements what the ROS 2 "
-        f"launch tutorials use); remove it or use what '{module}' has"
-    )
+def _unavailable(what: str, module: str, names: Sequence[str] = ()) -> CourseUnavailableError:
+    has = f"; '{module}' here has: {', '.join(names)}" if names else ""
+    return CourseUnavailableError(f"{what} is not available in this course{has}")
 
 
 def _missing_name(module: str, names: Sequence[str]) -> Callable[[str], Any]:
@@ -152,7 +151,7 @@ def _missing_name(module: str, names: Sequence[str]) -> Callable[[str], Any]:
         if name.startswith("__"):
             raise AttributeError(name)
         if name in REAL_NAMES.get(module, ()):
-            raise _unavailable(module, f"'{name}' (from {module})")
+            raise _unavailable(f"'{name}' of '{module}'", module, names)
         close = difflib.get_close_matches(name, names, n=1)
         hint = f". Did you mean: '{close[0]}'?" if close else ""
         raise ImportError(f"cannot import name '{name}' from '{module}' (unknown location){hint}")
@@ -165,7 +164,7 @@ class _MissingModules:
 
     def find_spec(self, fullname: str, path: Any = None, target: Any = None) -> ModuleSpec | None:
         if fullname.split(".")[0] in _ROOTS and fullname not in sys.modules:
-            raise _unavailable(fullname.rsplit(".", 1)[0], f"module '{fullname}'")
+            raise _unavailable(f"module '{fullname}'", fullname.rsplit(".", 1)[0])
         return None
 
 
