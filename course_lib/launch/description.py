@@ -54,12 +54,13 @@ class LaunchDescription(LaunchDescriptionEntity):
 
         def walk(entities: list[Any], conditional: bool) -> None:
             for entity in entities:
+                cond = conditional or getattr(entity, "condition", None) is not None
                 if isinstance(entity, DeclareLaunchArgument) and entity.name not in names:
-                    entity._conditionally_included = conditional
+                    entity._conditionally_included = cond
                     names.add(entity.name)
                     found.append(entity)
-                cond = conditional or getattr(entity, "condition", None) is not None
                 walk(entity.describe_sub_entities(), cond)
+                walk(entity.describe_conditional_sub_entities(), True)
 
         walk(self.entities, conditional_inclusion)
         return found

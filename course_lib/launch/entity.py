@@ -18,6 +18,10 @@ class LaunchDescriptionEntity:
         """Return the entities inside this one, known without a context."""
         return []
 
+    def describe_conditional_sub_entities(self) -> list[Any]:
+        """Return the entities that run only if something happens (an event, ...)."""
+        return []
+
 
 class Condition:
     """Decides at visit time whether an action runs."""

@@ -35,7 +35,7 @@ class RegisterEventHandler(Action):
     def execute(self, context: Any) -> None:
         context.register_event_handler(self.event_handler)
 
-    def describe_sub_entities(self) -> list[Any]:
+    def describe_conditional_sub_entities(self) -> list[Any]:
         return list(self.event_handler.describe()[1])
 
 

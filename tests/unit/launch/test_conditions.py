@@ -130,3 +130,24 @@ def test_shim_names_what_the_course_lacks_and_suggests_typos() -> None:
     )
     assert str(module.value) == "module 'launch.frontend' is not available in this course"
     assert "launch" not in sys.modules and "launch.frontend" not in sys.modules
+
+
+def test_show_args_marks_arguments_that_depend_on_a_condition_or_event() -> None:
+    from course_lib.launch.describe import format_arguments
+    from course_lib.launch.description import LaunchDescription
+    from course_lib.launch.event_actions import RegisterEventHandler
+    from course_lib.launch.launch_argument import DeclareLaunchArgument
+
+    description = LaunchDescription(
+        [
+            DeclareLaunchArgument("plain", default_value="a"),
+            DeclareLaunchArgument("maybe", default_value="b", condition=IfCondition("true")),
+            RegisterEventHandler(
+                OnProcessExit(on_exit=[DeclareLaunchArgument("late", default_value="c")])
+            ),
+        ]
+    )
+    text = format_arguments(description)
+    assert "'plain':\n" in text
+    assert "'maybe':*\n" in text and "'late':*\n" in text
+    assert text.endswith("\n* argument(s) which are only used if specific conditions occur\n")
