@@ -152,3 +152,31 @@ def test_what_the_course_lacks_fails_in_one_line(ros2_launch) -> None:
     ]
     assert b"Traceback" not in run.stdout + run.stderr
     assert b"ImportError" not in run.stdout + run.stderr
+
+
+def test_required_process_shuts_the_launch_down(ros2_launch) -> None:
+    run = ros2_launch("parameter_tests", "required_process.launch.py")
+    assert run.finish() == 0
+    lines = [re.sub(r"pid (\[?)\d+", r"pid \1N", line) for line in _lines(run.stdout)]
+    assert lines[2:] == [
+        "[INFO] [launch.user]: fast mode",
+        "[INFO] [launch.user]: not slow",
+        "[INFO] [sleep-1]: process started with pid [N]",
+        "[INFO] [echo-2]: process started with pid [N]",
+        "[echo-2] hello",
+        "[echo-2] ",
+        "[INFO] [echo-2]: process has finished cleanly [pid N]",
+        "[INFO] [launch]: process[echo-2] was required: shutting down launched system",
+        "[INFO] [launch.user]: shutdown: worker done",
+        "[INFO] [sleep-1]: sending signal 'SIGINT' to process[sleep-1]",
+        "[ERROR] [sleep-1]: process has died [pid N, exit code -2, cmd 'sleep 60'].",
+    ]
+    assert run.stderr.decode().count("UserWarning: The 'LaunchConfigurationEquals' and") == 2
+
+
+def test_launch_configuration_conditions_follow_arguments(ros2_launch) -> None:
+    run = ros2_launch("parameter_tests", "required_process.launch.py", "mode:=slow")
+    assert run.finish() == 0
+    assert b"[INFO] [launch.user]: fast mode" not in run.stdout
+    assert b"[INFO] [launch.user]: not slow" not in run.stdout
+    assert b"[INFO] [launch.user]: shutdown: worker done" in run.stdout
