@@ -68,7 +68,7 @@ def test_event_handlers_tutorial(launch_session: Session, ros2_launch) -> None:
         '[INFO] [launch.user]: Wait says "velocity node is up"',
         f"[INFO] [{wait}]: process has finished cleanly [pid ",
         "[INFO] [launch.user]: Wait finished",
-        "[INFO] [sim velocity 0.1-3]: process started with pid [",
+        "[INFO] [sim use_sim_time false-3]: process started with pid [",
         "[INFO] [sim velocity 0.25-4]: process started with pid [",
     ]
     found = [next(i for i, line in enumerate(lines) if line.startswith(e)) for e in expected_order]
@@ -98,7 +98,7 @@ def test_substitutions_tutorial(
     launch_session: Session, ros2_launch, file: str, namespace: str
 ) -> None:
     run = ros2_launch("parameter_tests", file)
-    # echo, the first `ros2 param set`, then the one the timer starts when the condition holds
+    # echo, `ros2 param set` of use_sim_time, then the one the timer starts (condition true)
     assert run.wait_for(b"process has finished cleanly", count=3, timeout=40.0), run.stdout
     assert _velocity(launch_session, f"{namespace}/sim") == 0.25
     assert f"velocity node in {namespace[1:]}" in run.stdout.decode()
@@ -110,8 +110,9 @@ def test_substitutions_tutorial(
 
 def test_unless_condition_and_defaults(launch_session: Session, ros2_launch) -> None:
     run = ros2_launch("parameter_tests", "example_substitutions.launch.py")
-    assert run.wait_for(b"[INFO] [sim velocity 0.1-4]: process has finished cleanly", timeout=40.0)
-    assert _velocity(launch_session, "/robot1/sim") == 0.1
+    done = b"[INFO] [sim use_sim_time false-4]: process has finished cleanly"
+    assert run.wait_for(done, timeout=40.0), run.stdout
+    assert _velocity(launch_session, "/robot1/sim") == 0.0
     assert b"[echo-3] velocity not provided" in run.stdout
     run.interrupt_group()
     assert run.finish() == 0
