@@ -9,10 +9,11 @@ Layout (each module imports only modules above it; tests/unit/launch checks for 
   `entity` (entities, `Action`, `Condition`), `events` (the event family), `context`.
 - families: `substitutions`, `conditions`, `event_handlers`, `launch_argument`, `loading`
   (launch files; the XML/YAML front end registers itself there), `description`,
-  `actions`, `event_actions`, `process`, `parameters`, `node` (launch_ros), `frontend`.
+  `actions`, `event_actions`, `process`, `parameters`, `node` (launch_ros),
+  `frontend_substitutions` and `frontend` (XML/YAML).
 - running: `running` (one process), `runtime` (the event loop), `screen` (output).
-- doors: `shim` (the `launch`/`launch_ros` modules launch files import), `cli`, `describe`,
-  `dry_run`, `handle`.
+- doors: `shim` (the `launch`/`launch_ros` modules launch files import; `real_names`),
+  `resolve` (package and arguments), `cli`, `describe`, `dry_run` (`declared`), `handle`.
 """
 
 from .dry_run import DryRunReport, dry_run
