@@ -4,7 +4,7 @@ The `launch`/`launch_ros` modules that launch files import exist only inside the
 that evaluates them (see `shim`). `launch(...)` starts a launch from a notebook (lesson 10);
 `dry_run(...)` shows each node's parameters and where they come from.
 
-Layout (each module imports only modules above it; tests/unit/launch checks for cycles):
+Layout (modules depend downward, toward the core; a unit test checks for import cycles):
 - core: `substitution` (base, text, normalize), `event` (event and handler bases),
   `entity` (entities, `Action`, `Condition`), `events` (the event family), `context`.
 - families: `substitutions`, `conditions`, `event_handlers`, `launch_argument`, `loading`
