@@ -9,7 +9,7 @@ Layout (modules depend downward, toward the core; a unit test checks for import 
   `entity` (entities, `Action`, `Condition`), `events` (the event family), `context`.
 - families: `substitutions`, `conditions`, `event_handlers`, `launch_argument`, `loading`
   (launch files; the XML/YAML front end registers itself there), `description`,
-  `actions`, `event_actions`, `process`, `parameters`, `node` (launch_ros),
+  `logic_substitutions`, `actions`, `event_actions`, `process`, `parameters`, `node` (launch_ros),
   `frontend_substitutions` and `frontend` (XML/YAML).
 - running: `running` (one process), `runtime` (the event loop), `screen` (output).
 - doors: `shim` (the `launch`/`launch_ros` modules launch files import; `real_names`),

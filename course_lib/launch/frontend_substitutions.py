@@ -5,15 +5,25 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from .logic_substitutions import (
+    AllSubstitution,
+    AndSubstitution,
+    AnySubstitution,
+    IfElseSubstitution,
+    NotSubstitution,
+    OrSubstitution,
+)
 from .substitution import Substitution, TextSubstitution
 from .substitutions import (
     Command,
     EnvironmentVariable,
+    EqualsSubstitution,
     ExecutableInPackage,
     FindExecutable,
     FindPackagePrefix,
     FindPackageShare,
     LaunchConfiguration,
+    NotEqualsSubstitution,
     PythonExpression,
     ThisLaunchFile,
     ThisLaunchFileDir,
@@ -90,6 +100,21 @@ def _find_exec(args: Args) -> Substitution:
     return FindExecutable(name=args[0])
 
 
+def _fixed(cls: type, name: str, count: int) -> Callable[[Args], Substitution]:
+    def make(args: Args) -> Substitution:
+        if len(args) != count:
+            raise TypeError(f"{name} substitution expects {count} argument{'s' * (count > 1)}")
+        return cls(*args)
+
+    return make
+
+
+def _if(args: Args) -> Substitution:
+    if not 2 <= len(args) <= 3:
+        raise TypeError("if substitution expects from 2 or 3 arguments")
+    return IfElseSubstitution(*args)
+
+
 _MAKERS: dict[str, Callable[[Args], Substitution]] = {
     "var": _var,
     "env": _env,
@@ -102,6 +127,14 @@ _MAKERS: dict[str, Callable[[Args], Substitution]] = {
     "eval": _eval,
     "command": _command,
     "find-exec": _find_exec,
+    "not": _fixed(NotSubstitution, "not", 1),
+    "and": _fixed(AndSubstitution, "and", 2),
+    "or": _fixed(OrSubstitution, "and", 2),  # launch's own message says "and" here
+    "any": lambda args: AnySubstitution(*args),
+    "all": lambda args: AllSubstitution(*args),
+    "if": _if,
+    "equals": _fixed(EqualsSubstitution, "and", 2),  # (sic, as launch says)
+    "not-equals": _fixed(NotEqualsSubstitution, "not-equals", 2),
 }
 
 

@@ -29,6 +29,7 @@ from . import (
     events,
     frontend,  # noqa: F401  (registers the XML/YAML loader)
     loading,
+    logic_substitutions,
     node,
     parameters,
     process,
@@ -70,6 +71,13 @@ def _launch_table() -> dict[str, dict[str, Any]]:
         "Command EqualsSubstitution EnvironmentVariable FindExecutable LaunchConfiguration "
         "LocalSubstitution NotEqualsSubstitution PathJoinSubstitution PythonExpression "
         "SubstitutionFailure TextSubstitution ThisLaunchFile ThisLaunchFileDir",
+    )
+    subs.update(
+        _pick(
+            logic_substitutions,
+            "AllSubstitution AndSubstitution AnySubstitution IfElseSubstitution NotSubstitution "
+            "OrSubstitution",
+        )
     )
     launch_actions = {name: getattr(actions, name) for name in actions.__all__}
     launch_actions.update({name: getattr(event_actions, name) for name in event_actions.__all__})

@@ -111,3 +111,35 @@ def test_frontend_command_line_keeps_substitutions_in_their_argument() -> None:
         "0.25",
         "{x: 5, y: 2}",
     ]
+
+
+def test_boolean_substitutions_read_launchs_booleans() -> None:
+    from course_lib.launch.logic_substitutions import (
+        AllSubstitution,
+        AndSubstitution,
+        AnySubstitution,
+        IfElseSubstitution,
+        NotSubstitution,
+        OrSubstitution,
+    )
+
+    context = _context(on="True", off="0")
+    on, off = LaunchConfiguration("on"), LaunchConfiguration("off")
+    assert _perform(NotSubstitution(off), context) == "true"
+    assert _perform(AndSubstitution(on, off), context) == "false"
+    assert _perform(OrSubstitution(on, off), context) == "true"
+    assert _perform(AnySubstitution(off, "false", "1"), context) == "true"
+    assert _perform(AllSubstitution(on, "true", off), context) == "false"
+    assert _perform(IfElseSubstitution(on, "fast", "slow"), context) == "fast"
+    with pytest.raises(SubstitutionFailure, match="Cannot convert value 'maybe' to"):
+        _perform(NotSubstitution("maybe"))
+
+
+def test_frontend_boolean_and_equality_substitutions() -> None:
+    from course_lib.launch.frontend_substitutions import parse_substitution
+
+    context = _context(v="0.25", use="true")
+    text = "$(if $(and $(equals $(var v) 0.25) $(var use)) yes no)"
+    assert perform_substitutions(context, parse_substitution(text)) == "yes"
+    text = "$(not-equals $(var v) 0.250)-$(or false $(not $(var use)))"
+    assert perform_substitutions(context, parse_substitution(text)) == "false-false"
