@@ -90,17 +90,31 @@ class IncludeLaunchDescription(Action):
 
 
 class _Scope(Action):
-    def __init__(self, push: bool) -> None:
+    """Push or pop launch configurations and environment; optionally reset them."""
+
+    def __init__(self, push: bool, reset: dict | None = None) -> None:
         super().__init__()
         self.push = push
+        self.reset = reset
 
     def execute(self, context: Any) -> None:
-        if self.push:
-            context.push_launch_configurations()
-            context.push_environment()
-        else:
+        if not self.push:
             context.pop_launch_configurations()
             context.pop_environment()
+            return
+        context.push_launch_configurations()
+        context.push_environment()
+        if self.reset is not None:  # forwarding=False: the group starts afresh
+            values = {
+                perform_substitutions(context, normalize_to_list_of_substitutions(k)): (
+                    perform_substitutions(context, normalize_to_list_of_substitutions(v))
+                )
+                for k, v in self.reset.items()
+            }
+            context.launch_configurations.clear()
+            context.launch_configurations.update(values)
+            context.environment.clear()
+            context.environment.update(context.initial_environment)
 
 
 class GroupAction(Action):
@@ -111,12 +125,14 @@ class GroupAction(Action):
         actions: Iterable[Any],
         *,
         scoped: bool = True,
+        forwarding: bool = True,
         launch_configurations: dict | None = None,
         **kwargs: Any,
     ) -> None:
         super().__init__(**kwargs)
         self.actions = list(actions)
         self.scoped = scoped
+        self.forwarding = forwarding
         self.launch_configurations = dict(launch_configurations or {})
 
     def describe_sub_entities(self) -> list[Any]:
@@ -126,6 +142,8 @@ class GroupAction(Action):
         sets = [SetLaunchConfiguration(k, v) for k, v in self.launch_configurations.items()]
         if not self.scoped:
             return [*sets, *self.actions]
+        if not self.forwarding:
+            return [_Scope(True, self.launch_configurations), *self.actions, _Scope(False)]
         return [_Scope(True), *sets, *self.actions, _Scope(False)]
 
 

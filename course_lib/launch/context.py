@@ -27,6 +27,7 @@ class LaunchContext:
         self._config_stack: list[dict[str, str]] = []
         self._locals_stack: list[dict[str, Any]] = [{}]
         self.environment: dict[str, str] = dict(os.environ)
+        self.initial_environment = dict(self.environment)  # what ResetEnvironment restores
         self._env_stack: list[dict[str, str]] = []
         self.is_shutdown = False
         self.node_names: list[str] = []

@@ -151,3 +151,31 @@ def test_show_args_marks_arguments_that_depend_on_a_condition_or_event() -> None
     assert "'plain':\n" in text
     assert "'maybe':*\n" in text and "'late':*\n" in text
     assert text.endswith("\n* argument(s) which are only used if specific conditions occur\n")
+
+
+def _visit_all(entity: object, context: LaunchContext) -> None:
+    for sub in entity.visit(context) or []:  # type: ignore[attr-defined]
+        _visit_all(sub, context)
+
+
+def test_group_scopes_and_forwarding() -> None:
+    from course_lib.launch.actions import GroupAction, SetLaunchConfiguration
+
+    context = _context(outer="1")
+    seen: dict[str, dict[str, str]] = {}
+
+    def record(name: str) -> object:
+        from course_lib.launch.actions import OpaqueFunction
+
+        return OpaqueFunction(
+            function=lambda ctx: seen.__setitem__(name, dict(ctx.launch_configurations))
+        )
+
+    _visit_all(GroupAction([SetLaunchConfiguration("inner", "2"), record("scoped")]), context)
+    _visit_all(
+        GroupAction([record("fresh")], forwarding=False, launch_configurations={"k": "v"}),
+        context,
+    )
+    _visit_all(GroupAction([SetLaunchConfiguration("leak", "3")], scoped=False), context)
+    assert seen == {"scoped": {"outer": "1", "inner": "2"}, "fresh": {"k": "v"}}
+    assert context.launch_configurations == {"outer": "1", "leak": "3"}
