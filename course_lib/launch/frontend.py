@@ -15,6 +15,7 @@ from .description import AnyLaunchDescriptionSource, LaunchDescription
 from .event_actions import Shutdown
 from .frontend_substitutions import parse_if_substitutions, parse_substitution
 from .loading import (
+    CourseUnavailableError,
     InvalidFrontendLaunchFileError,
     is_frontend_filename,
     register_frontend,
@@ -22,6 +23,7 @@ from .loading import (
 from .node import Node, PushRosNamespace, SetParameter, SetParametersFromFile, SetRemap
 from .parameters import ParameterFile, ParameterValue
 from .process import ExecuteProcess
+from .real_names import REAL_FRONTEND_TAGS
 from .substitution import TextSubstitution
 
 __all__ = ["load_frontend_file", "parse_action", "parse_substitution"]
@@ -320,6 +322,11 @@ _PARSERS: dict[str, Callable[[Entity], Any]] = {
 def parse_action(entity: Entity) -> Any:
     """Build the action for one entity."""
     if entity.type_name not in _PARSERS:
+        if entity.type_name in REAL_FRONTEND_TAGS:
+            raise CourseUnavailableError(
+                f"'{entity.type_name}' (a launch file tag) is not available in this course; "
+                f"it has: {', '.join(sorted(_PARSERS))}"
+            )
         raise RuntimeError(f"Unrecognized entity of the type: {entity.type_name}")
     return _PARSERS[entity.type_name](entity)
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from .loading import CourseUnavailableError
 from .logic_substitutions import (
     AllSubstitution,
     AndSubstitution,
@@ -13,6 +14,7 @@ from .logic_substitutions import (
     NotSubstitution,
     OrSubstitution,
 )
+from .real_names import REAL_FRONTEND_SUBSTITUTIONS
 from .substitution import Substitution, TextSubstitution
 from .substitutions import (
     Command,
@@ -181,6 +183,11 @@ def _substitution(text: str, i: int) -> tuple[Substitution, int]:
             arg, i = _fragment(text, i, lambda c: c.isspace() or c == ")")
         args.append(arg)
     if name not in _MAKERS:
+        if name in REAL_FRONTEND_SUBSTITUTIONS:
+            raise CourseUnavailableError(
+                f"'$({name} ...)' is not available in this course; it has: "
+                f"{', '.join(sorted(_MAKERS))}"
+            )
         raise RuntimeError(f"Unknown substitution: {name}")
     return _MAKERS[name](args), i + 1
 

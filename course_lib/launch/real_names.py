@@ -5,7 +5,7 @@ Pure data: the shim uses it to tell "the course does not have this" from a typo.
 
 from __future__ import annotations
 
-__all__ = ["REAL_NAMES"]
+__all__ = ["REAL_FRONTEND_SUBSTITUTIONS", "REAL_FRONTEND_TAGS", "REAL_NAMES"]
 
 
 def _names(text: str) -> tuple[str, ...]:
@@ -72,3 +72,14 @@ REAL_NAMES: dict[str, tuple[str, ...]] = {
     "launch_ros.event_handlers": ("OnStateTransition",),
     "launch_ros.events": ("lifecycle", "matches_node_name"),
 }
+
+# Tags and `$(...)` substitutions of XML/YAML launch files (`expose_action`/`expose_substitution`).
+REAL_FRONTEND_TAGS = _names(
+    "append_env arg executable group include let log reset reset_env set_env shutdown timer "
+    "unset_env load_composable_node node node_container push-ros-namespace push_ros_namespace "
+    "ros_timer set_parameter set_parameters_from_file set_remap set_ros_log_dir set_use_sim_time"
+)
+REAL_FRONTEND_SUBSTITUTIONS = _names(
+    "all and anon any command dirname env equals eval file-content filename find-exec if "
+    "launch_log_dir log_dir not not-equals or var exec-in-pkg find-pkg-prefix find-pkg-share param"
+)
