@@ -154,14 +154,19 @@ def _unavailable(what: str, module: str, names: Sequence[str] = ()) -> CourseUna
     return CourseUnavailableError(f"{what} is not available in this course{has}")
 
 
-def _missing_name(module: str, names: Sequence[str]) -> Callable[[str], Any]:
+def _missing_name(
+    module: str, names: Sequence[str], table: dict[str, dict[str, Any]]
+) -> Callable[[str], Any]:
     def __getattr__(name: str) -> Any:
         if name.startswith("__"):
             raise AttributeError(name)
         if name in REAL_NAMES.get(module, ()):
             raise _unavailable(f"'{name}' of '{module}'", module, names)
+        elsewhere = [other for other, attrs in table.items() if name in attrs]
         close = difflib.get_close_matches(name, names, n=1)
         hint = f". Did you mean: '{close[0]}'?" if close else ""
+        if elsewhere:
+            hint = f". It is in '{elsewhere[0]}'"
         raise ImportError(f"cannot import name '{name}' from '{module}' (unknown location){hint}")
 
     return __getattr__
@@ -181,7 +186,8 @@ _finder = _MissingModules()
 
 def _build() -> dict[str, types.ModuleType]:
     modules: dict[str, types.ModuleType] = {}
-    for name, attrs in _table().items():
+    table = _table()
+    for name, attrs in table.items():
         module = types.ModuleType(name, f"The course's stand-in for `{name}`.")
         module.__dict__.update(attrs)
         module.__path__ = []  # a package: submodules resolve through sys.modules
@@ -192,7 +198,7 @@ def _build() -> dict[str, types.ModuleType]:
             setattr(modules[parent], child, module)
     for name, module in modules.items():
         public = sorted(n for n in vars(module) if not n.startswith("_"))
-        module.__getattr__ = _missing_name(name, public)  # type: ignore[method-assign]
+        module.__getattr__ = _missing_name(name, public, table)  # type: ignore[method-assign]
     return modules
 
 

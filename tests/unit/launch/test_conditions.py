@@ -116,6 +116,8 @@ def test_shim_names_what_the_course_lacks_and_suggests_typos() -> None:
             from launch_ros.actions import LifecycleNode  # type: ignore[import-not-found] # noqa: F401
         with pytest.raises(ImportError) as typo:
             from launch.actions import RegisterEventHandlr  # type: ignore[import-not-found] # noqa: F401
+        with pytest.raises(ImportError) as wrong_package:
+            from launch.substitutions import FindPackageShare  # type: ignore[import-not-found] # noqa: F401
         with pytest.raises(ImportError) as module:
             import launch.frontend  # type: ignore[import-not-found] # noqa: F401
         from launch.event_handlers import OnProcessIO  # type: ignore[import-not-found]
@@ -127,6 +129,10 @@ def test_shim_names_what_the_course_lacks_and_suggests_typos() -> None:
     assert str(typo.value) == (
         "cannot import name 'RegisterEventHandlr' from 'launch.actions' (unknown location). "
         "Did you mean: 'RegisterEventHandler'?"
+    )
+    assert str(wrong_package.value) == (
+        "cannot import name 'FindPackageShare' from 'launch.substitutions' (unknown location). "
+        "It is in 'launch_ros.substitutions'"
     )
     assert str(module.value) == "module 'launch.frontend' is not available in this course"
     assert "launch" not in sys.modules and "launch.frontend" not in sys.modules
