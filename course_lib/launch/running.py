@@ -213,6 +213,7 @@ class RunningProcess:
         await asyncio.wait(pumps, timeout=0.5)  # grandchildren may keep a pipe open
         for pump in pumps:
             pump.cancel()
+        self.runtime.process_events()  # what the process wrote is handled before its exit
         if self.returncode == 0:
             self._log("INFO", f"process has finished cleanly [pid {self.pid}]")
         else:

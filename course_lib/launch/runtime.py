@@ -163,6 +163,10 @@ class Runtime:
         finally:
             self.context.pop_locals()
 
+    def process_events(self) -> None:
+        """Handle the events queued so far (called before a process's exit is logged)."""
+        self._process_events()
+
     def _process_events(self) -> None:
         """Handle queued events in order; each goes to every handler that matches it."""
         queue = self.context.event_queue
