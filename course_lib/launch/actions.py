@@ -6,8 +6,10 @@ import os
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from .description import Action, LaunchDescriptionSource
-from .substitutions import normalize_to_list_of_substitutions, perform_substitutions
+from .description import AnyLaunchDescriptionSource, LaunchDescriptionSource
+from .entity import Action
+from .launch_argument import DeclareLaunchArgument
+from .substitution import as_text, normalize_to_list_of_substitutions, perform_substitutions
 
 __all__ = [
     "DeclareLaunchArgument",
@@ -17,75 +19,8 @@ __all__ = [
     "OpaqueFunction",
     "SetEnvironmentVariable",
     "SetLaunchConfiguration",
-    "Shutdown",
     "TimerAction",
 ]
-
-
-def _text(value: Any) -> Any:
-    return str(value) if isinstance(value, (bool, int, float)) else value
-
-
-class DeclareLaunchArgument(Action):
-    """Declare a launch argument (`name:=value` on the command line), with a default."""
-
-    def __init__(
-        self,
-        name: str,
-        *,
-        default_value: Any = None,
-        description: str | None = None,
-        choices: list[str] | None = None,
-        **kwargs: Any,
-    ) -> None:
-        super().__init__(**kwargs)
-        self.name = name
-        self.default_value = (
-            None
-            if default_value is None
-            else normalize_to_list_of_substitutions(_text(default_value))
-        )
-        if choices is not None and len(choices) == 0:
-            raise RuntimeError(
-                "Provided choices arg is empty. Use None to ignore the choice list."
-            )
-        if choices is not None and isinstance(default_value, str) and default_value not in choices:
-            raise RuntimeError(
-                f'Provided default_value "{default_value}" is not in provided choices "{choices}".'
-            )
-        if description is None:
-            self.description = (
-                "no description given" if choices is None else ("One of: " + str(choices))
-            )
-        else:
-            self.description = description
-            if choices is not None:
-                self.description += "" if self.description.endswith(".") else "."
-                self.description += " Valid choices are: " + str(choices)
-        self.choices = choices
-        self._conditionally_included = False
-
-    def execute(self, context: Any) -> None:
-        if self.name not in context.launch_configurations:
-            if self.default_value is None:
-                context.log(
-                    "launch.actions.declare_launch_argument",
-                    "ERROR",
-                    f'Required launch argument "{self.name}" (description: '
-                    f'"{self.description}") was not provided',
-                )
-                raise RuntimeError(f'Required launch argument "{self.name}" was not provided.')
-            context.launch_configurations[self.name] = perform_substitutions(
-                context, self.default_value
-            )
-        value = context.launch_configurations[self.name]
-        if self.choices is not None and value not in self.choices:
-            message = (
-                f'Argument "{self.name}" provided value "{value}" is not valid. '
-                f"Valid options are: {self.choices}"
-            )
-            context.log("launch.actions.declare_launch_argument", "ERROR", message)
-            raise RuntimeError(message)
 
 
 class SetLaunchConfiguration(Action):
@@ -94,7 +29,7 @@ class SetLaunchConfiguration(Action):
     def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
-        self.value = normalize_to_list_of_substitutions(_text(value))
+        self.value = normalize_to_list_of_substitutions(as_text(value))
 
     def execute(self, context: Any) -> None:
         context.launch_configurations[perform_substitutions(context, self.name)] = (
@@ -114,8 +49,6 @@ class IncludeLaunchDescription(Action):
     ) -> None:
         super().__init__(**kwargs)
         if not isinstance(launch_description_source, LaunchDescriptionSource):
-            from .description import AnyLaunchDescriptionSource
-
             launch_description_source = AnyLaunchDescriptionSource(launch_description_source)
         self.launch_description_source = launch_description_source
         items = (
@@ -123,7 +56,7 @@ class IncludeLaunchDescription(Action):
             if isinstance(launch_arguments, dict)
             else (launch_arguments or [])
         )
-        self.launch_arguments = [(k, _text(v)) for k, v in items]
+        self.launch_arguments = [(k, as_text(v)) for k, v in items]
 
     def describe_sub_entities(self) -> list[Any]:
         found = self.launch_description_source.try_get_launch_description_without_context()
@@ -157,17 +90,31 @@ class IncludeLaunchDescription(Action):
 
 
 class _Scope(Action):
-    def __init__(self, push: bool) -> None:
+    """Push or pop launch configurations and environment; optionally reset them."""
+
+    def __init__(self, push: bool, reset: dict | None = None) -> None:
         super().__init__()
         self.push = push
+        self.reset = reset
 
     def execute(self, context: Any) -> None:
-        if self.push:
-            context.push_launch_configurations()
-            context.push_environment()
-        else:
+        if not self.push:
             context.pop_launch_configurations()
             context.pop_environment()
+            return
+        context.push_launch_configurations()
+        context.push_environment()
+        if self.reset is not None:  # forwarding=False: the group starts afresh
+            values = {
+                perform_substitutions(context, normalize_to_list_of_substitutions(k)): (
+                    perform_substitutions(context, normalize_to_list_of_substitutions(v))
+                )
+                for k, v in self.reset.items()
+            }
+            context.launch_configurations.clear()
+            context.launch_configurations.update(values)
+            context.environment.clear()
+            context.environment.update(context.initial_environment)
 
 
 class GroupAction(Action):
@@ -178,12 +125,14 @@ class GroupAction(Action):
         actions: Iterable[Any],
         *,
         scoped: bool = True,
+        forwarding: bool = True,
         launch_configurations: dict | None = None,
         **kwargs: Any,
     ) -> None:
         super().__init__(**kwargs)
         self.actions = list(actions)
         self.scoped = scoped
+        self.forwarding = forwarding
         self.launch_configurations = dict(launch_configurations or {})
 
     def describe_sub_entities(self) -> list[Any]:
@@ -193,6 +142,8 @@ class GroupAction(Action):
         sets = [SetLaunchConfiguration(k, v) for k, v in self.launch_configurations.items()]
         if not self.scoped:
             return [*sets, *self.actions]
+        if not self.forwarding:
+            return [_Scope(True, self.launch_configurations), *self.actions, _Scope(False)]
         return [_Scope(True), *sets, *self.actions, _Scope(False)]
 
 
@@ -219,7 +170,7 @@ class TimerAction(Action):
         **kwargs: Any,
     ) -> None:
         super().__init__(**kwargs)
-        self.period = normalize_to_list_of_substitutions(_text(period))
+        self.period = normalize_to_list_of_substitutions(as_text(period))
         self.actions = list(actions)
         self.cancel_on_shutdown = cancel_on_shutdown
 
@@ -260,21 +211,9 @@ class SetEnvironmentVariable(Action):
     def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
-        self.value = normalize_to_list_of_substitutions(_text(value))
+        self.value = normalize_to_list_of_substitutions(as_text(value))
 
     def execute(self, context: Any) -> None:
         context.environment[perform_substitutions(context, self.name)] = perform_substitutions(
             context, self.value
         )
-
-
-class Shutdown(Action):
-    """Shut the whole launch down."""
-
-    def __init__(self, *, reason: str = "reason not given", **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.reason = reason
-
-    def execute(self, context: Any) -> None:
-        if context.runtime is not None:
-            context.runtime.request_shutdown(self.reason)

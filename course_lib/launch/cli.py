@@ -8,11 +8,23 @@ import contextlib
 import os
 import sys
 
-__all__ = ["build_parser", "main", "parse_launch_arguments", "resolve_launch_file"]
+from .actions import IncludeLaunchDescription
+from .describe import print_arguments_of_launch_file
+from .description import AnyLaunchDescriptionSource, LaunchDescription
+from .dry_run import dry_run_file
+from .parameters import WRITTEN_FILES
+from .resolve import LaunchCommandError, parse_launch_arguments, resolve_launch_file
+from .runtime import Runtime
+from .screen import LaunchLog
+from .shim import launch_modules
 
-
-class LaunchCommandError(RuntimeError):
-    """A failure ros2cli reports as one line on stderr with exit code 1."""
+__all__ = [
+    "LaunchCommandError",
+    "build_parser",
+    "main",
+    "parse_launch_arguments",
+    "resolve_launch_file",
+]
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -75,68 +87,8 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def share_file_path(package: str, file_name: str | None) -> str:
-    """Return the one file called `file_name` below the package's share folder."""
-    from ament_index_python.packages import get_package_share_directory
-
-    share = get_package_share_directory(package)
-    matches = [
-        os.path.join(root, name)
-        for root, _dirs, files in os.walk(share)
-        for name in files
-        if name == file_name
-    ]
-    if not matches:
-        raise LaunchCommandError(
-            f"file '{file_name}' was not found in the share directory of package "
-            f"'{package}' which is at '{share}'"
-        )
-    if len(matches) > 1:
-        listing = ", ".join(f"'{m}'" for m in matches)
-        raise LaunchCommandError(
-            f"file '{file_name}' was found more than once in the share directory of package "
-            f"'{package}': [{listing}]"
-        )
-    return matches[0]
-
-
-def resolve_launch_file(
-    package_name: str, launch_file_name: str | None, launch_arguments: list[str]
-) -> tuple[str, list[str]]:
-    """Return (path, launch arguments) as `ros2 launch` reads its positional arguments."""
-    from ament_index_python.packages import PackageNotFoundError
-
-    if os.path.isfile(package_name):
-        extra = [] if launch_file_name is None else [launch_file_name]
-        return package_name, [*extra, *launch_arguments]
-    try:
-        return share_file_path(package_name, launch_file_name), list(launch_arguments)
-    except PackageNotFoundError as exc:
-        raise LaunchCommandError(f"Package '{package_name}' not found: {exc}") from None
-
-
-def parse_launch_arguments(arguments: list[str]) -> list[tuple[str, str]]:
-    """Parse `name:=value` pairs (last one wins), rejecting malformed ones like ros2launch."""
-    parsed: dict[str, str] = {}
-    for argument in arguments:
-        count = argument.count(":=")
-        if count == 0 or argument.startswith(":=") or (count == 1 and argument.endswith(":=")):
-            raise LaunchCommandError(
-                f"malformed launch argument '{argument}', expected format '<name>:=<value>'"
-            )
-        name, value = argument.split(":=", maxsplit=1)
-        parsed[name] = value
-    return list(parsed.items())
-
-
 def run_launch_file(path: str, arguments: list[str], *, noninteractive: bool) -> int:
     """Launch the file until it ends or is interrupted; return launch's exit code."""
-    from .actions import IncludeLaunchDescription
-    from .description import AnyLaunchDescriptionSource, LaunchDescription
-    from .runtime import Runtime
-    from .screen import LaunchLog
-    from .shim import launch_modules
-
     pairs = parse_launch_arguments(arguments)
     with launch_modules():
         out = LaunchLog()
@@ -157,8 +109,6 @@ def run_launch_file(path: str, arguments: list[str], *, noninteractive: bool) ->
 
 def _remove_params_files() -> None:
     """Remove the temporary params files this launch wrote (real launch leaves them)."""
-    from .parameters import WRITTEN_FILES
-
     for name in WRITTEN_FILES:
         with contextlib.suppress(OSError):
             os.remove(name)
@@ -172,12 +122,8 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.show_all_subprocesses_output:
         os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
     if args.show_args:
-        from .describe import print_arguments_of_launch_file
-
         return print_arguments_of_launch_file(path)
     if args.dry_run:
-        from .dry_run import dry_run_file
-
         print(dry_run_file(path, parse_launch_arguments(arguments)).render(), end="")
         return 0
     if args.print:

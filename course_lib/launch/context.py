@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+import asyncio
 import os
+from collections import deque
 from types import SimpleNamespace
 from typing import Any
+
+from .event import BaseEventHandler, Event
+from .events import ExecutionComplete
 
 __all__ = ["LaunchContext"]
 
@@ -22,11 +27,13 @@ class LaunchContext:
         self._config_stack: list[dict[str, str]] = []
         self._locals_stack: list[dict[str, Any]] = [{}]
         self.environment: dict[str, str] = dict(os.environ)
+        self.initial_environment = dict(self.environment)  # what ResetEnvironment restores
         self._env_stack: list[dict[str, str]] = []
         self.is_shutdown = False
         self.node_names: list[str] = []
         self.process_counter = 0
-        self.global_params: list[tuple[str, Any]] = []  # launch_ros SetParameter
+        self.event_handlers: deque[BaseEventHandler] = deque()  # newest first, as launch
+        self.event_queue: deque[Event] = deque()
         self.planned_processes: list[Any] = []  # processes found when only describing
         self.messages: list[tuple[str, str, str]] = []  # (logger, level, text) when describing
 
@@ -66,6 +73,42 @@ class LaunchContext:
     def pop_environment(self) -> None:
         """Restore the environment saved last."""
         self.environment = self._env_stack.pop()
+
+    def register_event_handler(self, handler: BaseEventHandler, append: bool = False) -> None:
+        """Register an event handler (before the others, unless `append`)."""
+        if append:
+            self.event_handlers.append(handler)
+        else:
+            self.event_handlers.appendleft(handler)
+
+    def unregister_event_handler(self, handler: BaseEventHandler) -> None:
+        """Unregister an event handler."""
+        self.event_handlers.remove(handler)
+
+    def would_handle_event(self, event: Event) -> bool:
+        """Return whether any registered handler matches `event`."""
+        return any(handler.matches(event) for handler in self.event_handlers)
+
+    def emit_event_sync(self, event: Event) -> None:
+        """Queue an event; the runtime handles it in order (describing only: it is kept)."""
+        self.event_queue.append(event)
+        if self.runtime is not None:
+            self.runtime.wake()
+
+    async def emit_event(self, event: Event) -> None:
+        """Queue an event (the coroutine form launch also has)."""
+        self.emit_event_sync(event)
+
+    def action_executed(self, action: Any) -> None:
+        """Emit ExecutionComplete for `action` once it completes, if anything handles it."""
+        event = ExecutionComplete(action=action)
+        if not self.would_handle_event(event):
+            return
+        future: asyncio.Future | None = action.get_asyncio_future()
+        if future is None:
+            self.emit_event_sync(event)
+        else:
+            future.add_done_callback(lambda _future: self.emit_event_sync(event))
 
     def log(self, logger: str, level: str, text: str) -> None:
         """Log as launch does (`[LEVEL] [logger]: text`), or keep it when only describing."""

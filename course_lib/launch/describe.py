@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from .description import load_any_launch_file
+from .loading import load_any_launch_file
 from .shim import launch_modules
 
 __all__ = ["format_arguments", "print_arguments_of_launch_file"]

@@ -12,8 +12,13 @@ from typing import Any
 
 import yaml
 
+from .actions import IncludeLaunchDescription
+from .context import LaunchContext
 from .declared import DeclaredParameter, declared_parameters
+from .description import AnyLaunchDescriptionSource
 from .node import UNSPECIFIED_NAME, UNSPECIFIED_NAMESPACE, Node
+from .resolve import parse_launch_arguments, resolve_launch_file
+from .shim import launch_modules
 
 __all__ = ["DryRunReport", "NodePlan", "dry_run", "dry_run_file"]
 
@@ -156,11 +161,6 @@ def _warnings(report: DryRunReport, seen_keys: list[tuple[str, str]]) -> None:
 
 def dry_run_file(path: str, launch_arguments: list[tuple[str, str]]) -> DryRunReport:
     """Evaluate a launch file without starting anything; report nodes and parameters."""
-    from .actions import IncludeLaunchDescription
-    from .context import LaunchContext
-    from .description import AnyLaunchDescriptionSource
-    from .shim import launch_modules
-
     context = LaunchContext()
     pending: list[Any] = [
         IncludeLaunchDescription(
@@ -181,7 +181,5 @@ def dry_run_file(path: str, launch_arguments: list[tuple[str, str]]) -> DryRunRe
 
 def dry_run(package_or_path: str, file: str | None = None, *launch_args: str) -> DryRunReport:
     """Return what `ros2 launch ... --dry-run` prints (`print(report.render())`)."""
-    from .cli import parse_launch_arguments, resolve_launch_file
-
     path, arguments = resolve_launch_file(package_or_path, file, list(launch_args))
     return dry_run_file(path, parse_launch_arguments(arguments))

@@ -10,32 +10,23 @@ from typing import Any
 import yaml
 
 from . import actions as la
-from .description import (
-    AnyLaunchDescriptionSource,
-    IfCondition,
-    LaunchDescription,
-    LaunchDescriptionSource,
-    UnlessCondition,
-)
+from .conditions import IfCondition, UnlessCondition
+from .description import AnyLaunchDescriptionSource, LaunchDescription
+from .event_actions import Shutdown
 from .frontend_substitutions import parse_if_substitutions, parse_substitution
-from .node import Node, PushRosNamespace
+from .loading import (
+    CourseUnavailableError,
+    InvalidFrontendLaunchFileError,
+    is_frontend_filename,
+    register_frontend,
+)
+from .node import Node, PushRosNamespace, SetParameter, SetParametersFromFile, SetRemap
 from .parameters import ParameterFile, ParameterValue
 from .process import ExecuteProcess
+from .real_names import REAL_FRONTEND_TAGS
+from .substitution import TextSubstitution
 
-__all__ = [
-    "FrontendLaunchDescriptionSource",
-    "is_frontend_filename",
-    "load_frontend_file",
-    "parse_substitution",
-]
-
-_XML_EXTENSIONS = ("launch.xml", "xml", "launch")
-_YAML_EXTENSIONS = ("launch.yaml", "launch.yml", "yaml", "yml", "launch")
-
-
-def is_frontend_filename(filename: str) -> bool:
-    """Return whether a front end (XML or YAML) claims this file name."""
-    return any(filename.endswith("." + ext) for ext in (*_XML_EXTENSIONS, *_YAML_EXTENSIONS))
+__all__ = ["load_frontend_file", "parse_action", "parse_substitution"]
 
 
 def _coerce(value: str) -> Any:
@@ -122,8 +113,6 @@ def _load_entity(path: str) -> Entity:
             return loader()
         except Exception as exc:
             errors.append(exc)
-    from .description import InvalidFrontendLaunchFileError
-
     extension = path.rsplit(".", 1)[-1] if is_frontend_filename(path) else ""
     raise InvalidFrontendLaunchFileError(extension, likely_errors=errors)
 
@@ -143,18 +132,6 @@ def load_frontend_file(path: str) -> LaunchDescription:
     if root.type_name != "launch":
         raise RuntimeError("Expected 'launch' as root tag")
     return LaunchDescription([parse_action(child) for child in root.children])
-
-
-class FrontendLaunchDescriptionSource(LaunchDescriptionSource):
-    """An XML or YAML launch file (`XMLLaunchDescriptionSource`, `YAMLLaunchDescriptionSource`)."""
-
-    def __init__(self, launch_file_path: Any) -> None:
-        super().__init__(None, launch_file_path, "interpreted frontend launch file")
-
-    def _load(self, location: str) -> LaunchDescription:
-        from .description import load_frontend_launch_file
-
-        return load_frontend_launch_file(location)
 
 
 def _subs(entity: Entity, name: str, optional: bool = True) -> Any:
@@ -210,6 +187,14 @@ def _process_kwargs(entity: Entity) -> dict[str, Any]:
     delay = entity.get_attr("respawn_delay", optional=True)
     if delay is not None:
         kwargs["respawn_delay"] = float(delay)
+    on_exit = entity.get_attr("on_exit", optional=True)
+    if on_exit is not None:
+        if on_exit != "shutdown":
+            raise ValueError(
+                f"Attribute on_exit of Entity node expected to be shutdown but got `{on_exit}`"
+                "Other on_exit actions not yet supported"
+            )
+        kwargs["on_exit"] = [Shutdown()]
     env = entity.get_attr("env", data_type=list, optional=True) or []
     if env:
         kwargs["additional_env"] = {
@@ -219,7 +204,34 @@ def _process_kwargs(entity: Entity) -> dict[str, Any]:
 
 
 def _cmdline(text: Any) -> list[Any]:
-    return [parse_substitution(part) for part in shlex.split(str(text))]
+    """Split a command line into arguments, keeping `$(...)` inside the argument it is in."""
+    args: list[list[Any]] = []
+    current: list[Any] = []
+
+    def close() -> None:
+        nonlocal current
+        if current:
+            args.append(current)
+            current = []
+
+    for sub in parse_substitution(str(text)):
+        if not isinstance(sub, TextSubstitution):
+            current.append(sub)
+            continue
+        if sub.text[:1].isspace():
+            close()
+        try:
+            tokens = shlex.split(sub.text)
+        except ValueError:  # a quote closed after a substitution: split on spaces only
+            tokens = sub.text.split()
+        for index, token in enumerate(tokens):
+            current.append(TextSubstitution(text=token))
+            if index < len(tokens) - 1:
+                close()
+        if not tokens or sub.text[-1:].isspace():
+            close()
+    close()
+    return args
 
 
 def _node(entity: Entity) -> Node:
@@ -292,11 +304,31 @@ _PARSERS: dict[str, Callable[[Entity], Any]] = {
     ),
     "push-ros-namespace": lambda e: PushRosNamespace(_subs(e, "namespace", False)),
     "push_ros_namespace": lambda e: PushRosNamespace(_subs(e, "namespace", False)),
+    "set_parameter": lambda e: SetParameter(
+        _subs(e, "name", False), _subs(e, "value", False), **_condition(e)
+    ),
+    "set_parameters_from_file": lambda e: SetParametersFromFile(
+        _subs(e, "filename", False), **_condition(e)
+    ),
+    "set_remap": lambda e: SetRemap(
+        _subs(e, "from", False), _subs(e, "to", False), **_condition(e)
+    ),
+    "shutdown": lambda e: Shutdown(
+        reason=e.get_attr("reason", optional=True) or "reason not given"
+    ),
 }
 
 
 def parse_action(entity: Entity) -> Any:
     """Build the action for one entity."""
     if entity.type_name not in _PARSERS:
+        if entity.type_name in REAL_FRONTEND_TAGS:
+            raise CourseUnavailableError(
+                f"'{entity.type_name}' (a launch file tag) is not available in this course; "
+                f"it has: {', '.join(sorted(_PARSERS))}"
+            )
         raise RuntimeError(f"Unrecognized entity of the type: {entity.type_name}")
     return _PARSERS[entity.type_name](entity)
+
+
+register_frontend(load_frontend_file)

@@ -5,15 +5,28 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from .loading import CourseUnavailableError
+from .logic_substitutions import (
+    AllSubstitution,
+    AndSubstitution,
+    AnySubstitution,
+    IfElseSubstitution,
+    NotSubstitution,
+    OrSubstitution,
+)
+from .real_names import REAL_FRONTEND_SUBSTITUTIONS
+from .substitution import Substitution, TextSubstitution
 from .substitutions import (
+    Command,
     EnvironmentVariable,
+    EqualsSubstitution,
     ExecutableInPackage,
+    FindExecutable,
     FindPackagePrefix,
     FindPackageShare,
     LaunchConfiguration,
+    NotEqualsSubstitution,
     PythonExpression,
-    Substitution,
-    TextSubstitution,
     ThisLaunchFile,
     ThisLaunchFileDir,
 )
@@ -77,6 +90,33 @@ def _eval(args: Args) -> Substitution:
     return PythonExpression(args[0])
 
 
+def _command(args: Args) -> Substitution:
+    if not 1 <= len(args) <= 2:
+        raise ValueError("command substitution expects 1 or 2 arguments")
+    return Command(args[0], on_stderr=args[1] if len(args) > 1 else "fail")
+
+
+def _find_exec(args: Args) -> Substitution:
+    if len(args) != 1:
+        raise AttributeError("find-exec substitution expects 1 argument")
+    return FindExecutable(name=args[0])
+
+
+def _fixed(cls: type, name: str, count: int) -> Callable[[Args], Substitution]:
+    def make(args: Args) -> Substitution:
+        if len(args) != count:
+            raise TypeError(f"{name} substitution expects {count} argument{'s' * (count > 1)}")
+        return cls(*args)
+
+    return make
+
+
+def _if(args: Args) -> Substitution:
+    if not 2 <= len(args) <= 3:
+        raise TypeError("if substitution expects from 2 or 3 arguments")
+    return IfElseSubstitution(*args)
+
+
 _MAKERS: dict[str, Callable[[Args], Substitution]] = {
     "var": _var,
     "env": _env,
@@ -87,6 +127,16 @@ _MAKERS: dict[str, Callable[[Args], Substitution]] = {
     "dirname": _no_args(ThisLaunchFileDir, "dirname"),
     "filename": _no_args(ThisLaunchFile, "filename"),
     "eval": _eval,
+    "command": _command,
+    "find-exec": _find_exec,
+    "not": _fixed(NotSubstitution, "not", 1),
+    "and": _fixed(AndSubstitution, "and", 2),
+    "or": _fixed(OrSubstitution, "and", 2),  # launch's own message says "and" here
+    "any": lambda args: AnySubstitution(*args),
+    "all": lambda args: AllSubstitution(*args),
+    "if": _if,
+    "equals": _fixed(EqualsSubstitution, "and", 2),  # (sic, as launch says)
+    "not-equals": _fixed(NotEqualsSubstitution, "not-equals", 2),
 }
 
 
@@ -133,6 +183,11 @@ def _substitution(text: str, i: int) -> tuple[Substitution, int]:
             arg, i = _fragment(text, i, lambda c: c.isspace() or c == ")")
         args.append(arg)
     if name not in _MAKERS:
+        if name in REAL_FRONTEND_SUBSTITUTIONS:
+            raise CourseUnavailableError(
+                f"'$({name} ...)' is not available in this course; it has: "
+                f"{', '.join(sorted(_MAKERS))}"
+            )
         raise RuntimeError(f"Unknown substitution: {name}")
     return _MAKERS[name](args), i + 1
 

@@ -6,7 +6,9 @@ import os
 from dataclasses import dataclass, field
 from typing import Any
 
-from .description import Action
+import yaml
+
+from .entity import Action
 from .parameters import (
     Parameter,
     evaluate_parameter_dict,
@@ -14,13 +16,17 @@ from .parameters import (
     write_params_file,
 )
 from .process import ExecuteProcess, ProcessSpec
-from .substitutions import (
-    ExecutableInPackage,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from .substitution import normalize_to_list_of_substitutions, perform_substitutions
+from .substitutions import ExecutableInPackage
 
-__all__ = ["Node", "ParameterSource", "PushRosNamespace", "SetParameter", "SetRemap"]
+__all__ = [
+    "Node",
+    "ParameterSource",
+    "PushRosNamespace",
+    "SetParameter",
+    "SetParametersFromFile",
+    "SetRemap",
+]
 
 UNSPECIFIED_NAME = "<node_name_unspecified>"
 UNSPECIFIED_NAMESPACE = "<node_namespace_unspecified>"
@@ -120,7 +126,7 @@ class Node(ExecuteProcess):
             args += ["-r", f"__ns:={ns}"]
         self.node_name = prefix_namespace(ns or UNSPECIFIED_NAMESPACE, name)
         args += self._parameter_arguments(context)
-        self.remappings = list(context.launch_configurations.get("ros_remaps_list", []))
+        self.remappings = list(context.launch_configurations.get("ros_remaps", []))
         self.remappings += [
             (perform_substitutions(context, a), perform_substitutions(context, b))
             for a, b in self._remappings
@@ -130,14 +136,18 @@ class Node(ExecuteProcess):
         return args
 
     def _parameter_arguments(self, context: Any) -> list[str]:
-        import yaml
-
         write = context.runtime is not None
         self.parameter_sources = []
         args: list[str] = []
-        for name, value in context.global_params:
-            args += ["-p", f"{name}:={value}"]
-            self.parameter_sources.append(ParameterSource("global", None, {name: value}))
+        for item in context.launch_configurations.get("global_params", []):
+            if isinstance(item, tuple):
+                name, value = item
+                args += ["-p", f"{name}:={value}"]
+                self.parameter_sources.append(ParameterSource("global", None, {name: value}))
+            else:
+                path = os.path.abspath(item)
+                args += ["--params-file", path]
+                self.parameter_sources.append(ParameterSource("file", path))
         for item in self._parameters:
             if isinstance(item, dict):
                 values = evaluate_parameter_dict(context, item)
@@ -197,6 +207,13 @@ class PushRosNamespace(Action):
         )
 
 
+def _extend_global(context: Any, key: str, items: list[Any]) -> None:
+    # launch_ros extends the list in place: a group scopes only a list it created itself.
+    found = context.launch_configurations.get(key, [])
+    found.extend(items)
+    context.launch_configurations[key] = found
+
+
 class SetParameter(Action):
     """Give every node that follows (in this scope) a parameter."""
 
@@ -205,7 +222,18 @@ class SetParameter(Action):
         self.parameter = Parameter(name, value)
 
     def execute(self, context: Any) -> None:
-        context.global_params.append(self.parameter.evaluate(context))
+        _extend_global(context, "global_params", [self.parameter.evaluate(context)])
+
+
+class SetParametersFromFile(Action):
+    """Give every node that follows (in this scope) the parameters of a params file."""
+
+    def __init__(self, filename: Any, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.filename = normalize_to_list_of_substitutions(filename)
+
+    def execute(self, context: Any) -> None:
+        _extend_global(context, "global_params", [perform_substitutions(context, self.filename)])
 
 
 class SetRemap(Action):
@@ -218,4 +246,4 @@ class SetRemap(Action):
 
     def execute(self, context: Any) -> None:
         pair = (perform_substitutions(context, self.src), perform_substitutions(context, self.dst))
-        context.launch_configurations.setdefault("ros_remaps_list", []).append(pair)
+        _extend_global(context, "ros_remaps", [pair])

@@ -10,7 +10,8 @@ from typing import Any
 
 import yaml
 
-from .substitutions import Substitution, normalize_to_list_of_substitutions, perform_substitutions
+from .frontend_substitutions import parse_substitution
+from .substitution import Substitution, normalize_to_list_of_substitutions, perform_substitutions
 
 __all__ = [
     "Parameter",
@@ -70,8 +71,6 @@ class ParameterFile:
             )
         if not allow:
             return Path(path)
-        from .frontend import parse_substitution
-
         text = Path(path).read_text()
         with tempfile.NamedTemporaryFile("w", prefix="launch_params_", delete=False) as handle:
             handle.write(perform_substitutions(context, parse_substitution(text)))

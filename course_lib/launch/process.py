@@ -7,12 +7,12 @@ import shlex
 from dataclasses import dataclass, field
 from typing import Any
 
-from .description import Action
-from .substitutions import (
-    LaunchConfiguration,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from .entity import Action
+from .event import BaseEventHandler
+from .event_handlers import OnProcessExit, OnShutdown
+from .events import SignalProcess
+from .substitution import normalize_to_list_of_substitutions, perform_substitutions
+from .substitutions import LaunchConfiguration
 
 __all__ = ["ExecuteProcess", "ProcessSpec"]
 
@@ -107,6 +107,7 @@ class ExecuteProcess(Action):
         self.log_cmd = log_cmd
         self.on_exit = on_exit
         self.spec: ProcessSpec | None = None
+        self._future: Any = None
 
     def _final_cmd(self, context: Any) -> list[str]:
         """Return the command line with every substitution performed."""
@@ -180,6 +181,32 @@ class ExecuteProcess(Action):
             return None
         if context.runtime is None:
             context.planned_processes.append(self)
-        else:
-            context.runtime.start_process(self, self.spec)
+            return None
+        context.register_event_handler(_SignalHandler(self, context.runtime))
+        context.register_event_handler(OnShutdown(on_shutdown=self._on_shutdown))
+        if self.on_exit is not None:
+            context.register_event_handler(OnProcessExit(target_action=self, on_exit=self.on_exit))
+        self._future = context.runtime.start_process(self, self.spec)
         return None
+
+    def _on_shutdown(self, event: Any, context: Any) -> None:
+        send_sigint = not event.due_to_sigint or context.noninteractive
+        context.runtime.shutdown_process(self, send_sigint=send_sigint)
+
+    def get_asyncio_future(self) -> Any:
+        """Return the future done once the process (and its respawns) have ended."""
+        return self._future
+
+
+class _SignalHandler(BaseEventHandler):
+    """Send the signals that shutdown asks for, in event order (as launch does)."""
+
+    def __init__(self, action: ExecuteProcess, runtime: Any) -> None:
+        super().__init__(
+            matcher=lambda event: isinstance(event, SignalProcess) and event.action is action
+        )
+        self.runtime = runtime
+
+    def handle(self, event: Any, context: Any) -> None:
+        super().handle(event, context)
+        self.runtime.signal_process(event.action, event.signal_name)

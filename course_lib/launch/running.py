@@ -12,6 +12,7 @@ import time
 import traceback
 from typing import Any
 
+from .events import ProcessExited, ProcessStarted, ProcessStderr, ProcessStdout, SignalProcess
 from .process import ProcessSpec
 
 __all__ = ["RunningProcess", "output_destinations"]
@@ -70,6 +71,23 @@ class RunningProcess:
         self._timers: list[asyncio.TimerHandle] = []
         self._retries = 0
         self._closing = False
+        self.finished: asyncio.Future = asyncio.get_running_loop().create_future()
+
+    def _event_args(self) -> dict[str, Any]:
+        return {
+            "action": self.action,
+            "name": self.spec.name,
+            "cmd": self.spec.cmd,
+            "cwd": self.spec.cwd,
+            "env": self.spec.env,
+            "pid": self.pid,
+        }
+
+    def _emit_event(self, event_class: type, **kwargs: Any) -> None:
+        event = event_class(**self._event_args(), **kwargs)
+        context = self.runtime.context
+        if context.would_handle_event(event):
+            context.emit_event_sync(event)
 
     def _log(self, level: str, message: str) -> None:
         self.runtime.log(self.spec.name, level, message)
@@ -90,6 +108,7 @@ class RunningProcess:
 
     def _on_output(self, stream: str, data: bytes) -> None:
         self.runtime.process_pending_signals()
+        self._emit_event(ProcessStdout if stream == "stdout" else ProcessStderr, text=data)
         buffered = self._buffers[stream] + data.decode(errors="replace")
         *lines, rest = buffered.split("\n")
         for line in lines:
@@ -163,6 +182,8 @@ class RunningProcess:
         finally:
             self.done = True
             self._cancel_timers()
+            if not self.finished.done():
+                self.finished.set_result(self.returncode)
             self.runtime.wake()
 
     def _should_respawn(self) -> bool:
@@ -181,6 +202,7 @@ class RunningProcess:
             return False
         self.pid = self._proc.pid
         self._log("INFO", f"process started with pid [{self.pid}]")
+        self._emit_event(ProcessStarted)
         if self._shutdown_requested is not None:
             self._begin_shutdown(self._shutdown_requested)
         streams = ("stdout", "stderr")
@@ -191,6 +213,7 @@ class RunningProcess:
         await asyncio.wait(pumps, timeout=0.5)  # grandchildren may keep a pipe open
         for pump in pumps:
             pump.cancel()
+        self.runtime.process_events()  # what the process wrote is handled before its exit
         if self.returncode == 0:
             self._log("INFO", f"process has finished cleanly [pid {self.pid}]")
         else:
@@ -200,6 +223,7 @@ class RunningProcess:
                 f"cmd '{self.spec.cmd_text}'].",
             )
         self._flush()
+        self._emit_event(ProcessExited, returncode=self.returncode)
         return True
 
     def shutdown(self, *, send_sigint: bool) -> None:
@@ -220,7 +244,9 @@ class RunningProcess:
                 loop.call_later(float(delay), self._escalate, delay, before, after)
             )
         if send_sigint:
-            self.signal("SIGINT")
+            self.runtime.context.emit_event_sync(
+                SignalProcess(action=self.action, signal_name="SIGINT")
+            )
 
     def _escalate(self, delay: str, before: str, after: str) -> None:
         if self._proc is None or self._proc.returncode is not None:

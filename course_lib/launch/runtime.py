@@ -6,11 +6,13 @@ import asyncio
 import signal
 import sys
 import traceback
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 from .context import LaunchContext
-from .description import LOADED_LAUNCH_FILES
+from .event_handlers import OnShutdown
+from .events import Shutdown
+from .loading import LOADED_LAUNCH_FILES
 from .running import RunningProcess
 from .screen import LaunchLog
 
@@ -75,11 +77,27 @@ class Runtime:
         if self._wakeup is not None:
             self._wakeup.set()
 
-    def start_process(self, action: Any, spec: Any) -> None:
-        """Start a process (called by ExecuteProcess.execute)."""
+    def start_process(self, action: Any, spec: Any) -> asyncio.Future:
+        """Start a process (ExecuteProcess.execute); the future is done when it has ended."""
         running = RunningProcess(self, action, spec)
         self.processes.append(running)
         asyncio.get_running_loop().create_task(running.run())
+        return running.finished
+
+    def _running(self, action: Any) -> RunningProcess | None:
+        return next((p for p in self.processes if p.action is action), None)
+
+    def shutdown_process(self, action: Any, *, send_sigint: bool) -> None:
+        """Stop the process of `action` like launch (called on the Shutdown event)."""
+        running = self._running(action)
+        if running is not None:
+            running.shutdown(send_sigint=send_sigint)
+
+    def signal_process(self, action: Any, name: str) -> None:
+        """Send signal `name` to the process of `action` (a SignalProcess event)."""
+        running = self._running(action)
+        if running is not None:
+            running.signal(name)
 
     def add_timer(self, period: float, actions: list[Any], cancel_on_shutdown: bool) -> None:
         """Visit `actions` after `period` seconds (called by TimerAction.execute)."""
@@ -120,28 +138,58 @@ class Runtime:
         try:
             self._visit(entity)
         except Exception as exc:
-            message = f"Caught exception in launch (see debug for traceback): {exc}"
-            self.log("launch", "ERROR", message)
-            self.out.file(traceback.format_exc())
-            where = where_in_launch_file(exc)
-            if where is not None:
-                print(f"Try: fix {where[0]}, line {where[1]} (course hint)", file=sys.stderr)
-            self.return_code = 1
-            self.request_shutdown(message)
+            self._report(exc)
+
+    def _report(self, exc: Exception) -> None:
+        message = f"Caught exception in launch (see debug for traceback): {exc}"
+        self.log("launch", "ERROR", message)
+        self.out.file(traceback.format_exc())
+        where = where_in_launch_file(exc)
+        if where is not None:
+            print(f"Try: fix {where[0]}, line {where[1]} (course hint)", file=sys.stderr)
+        self.return_code = 1
+        self.request_shutdown(message)
+
+    def _handle(self, handler: Any, event: Any) -> None:
+        self.context.push_locals()
+        try:
+            entities = handler.handle(event, self.context)
+            entities = list(entities) if isinstance(entities, Iterable) else [entities]
+            for entity in entities:
+                if entity is not None:
+                    self._visit(entity)
+        except Exception as exc:
+            self._report(exc)
+        finally:
+            self.context.pop_locals()
+
+    def process_events(self) -> None:
+        """Handle the events queued so far (called before a process's exit is logged)."""
+        self._process_events()
+
+    def _process_events(self) -> None:
+        """Handle queued events in order; each goes to every handler that matches it."""
+        queue = self.context.event_queue
+        while queue and not self._cancelled:
+            event = queue.popleft()
+            for handler in tuple(self.context.event_handlers):
+                if handler.matches(event):
+                    self._handle(handler, event)
 
     def request_shutdown(self, reason: str, *, due_to_sigint: bool = False) -> None:
-        """Shut down: cancel timers, stop processes (SIGINT unless Ctrl-C already hit them)."""
-        if self.shutting_down:
-            return
+        """Shut down as launch does: emit the Shutdown event (once); handlers stop things."""
+        if not self.shutting_down:
+            self.context.emit_event_sync(Shutdown(reason=reason, due_to_sigint=due_to_sigint))
         self.shutting_down = True
         self.context.is_shutdown = True
+        self.wake()
+
+    def _on_shutdown_event(self, event: Any, context: Any) -> None:
+        self.shutting_down = True
+        context.is_shutdown = True
         for task, cancel in self._timers:
             if cancel:
                 task.cancel()
-        send = not due_to_sigint or self.context.noninteractive
-        for running in self.processes:
-            running.shutdown(send_sigint=send)
-        self.wake()
 
     def _raw_sigint(self, signum: int, frame: Any) -> None:
         # A Python-level handler runs at the next bytecode, before any output relayed after
@@ -151,9 +199,12 @@ class Runtime:
 
     def process_pending_signals(self) -> None:
         """Handle SIGINTs received but not handled yet (called before relaying output)."""
+        handled = bool(self._sigint_pending)
         while self._sigint_pending:
             self._sigint_pending -= 1
             self._on_sigint()
+        if handled:  # launch's shutdown messages come before the output relayed after them
+            self._process_events()
 
     def _on_sigint(self) -> None:
         base = "user interrupted with ctrl-c (SIGINT)"
@@ -176,6 +227,22 @@ class Runtime:
         self._timers = [(t, c) for t, c in self._timers if not t.done()]
         return any(not p.done for p in self.processes) or bool(self._timers)
 
+    async def _loop_until_done(self) -> None:
+        assert self._wakeup is not None
+        while True:
+            self._wakeup.clear()
+            self._process_events()
+            if self._cancelled:
+                return
+            if self.context.event_queue:
+                continue
+            if not self._busy():
+                if self.shutting_down:
+                    return
+                self.request_shutdown("idle")
+                continue
+            await self._wakeup.wait()
+
     async def run(self, description: Any) -> int:
         """Run until every process has exited and no timer is pending; return the exit code."""
         loop = self._loop = asyncio.get_running_loop()
@@ -183,13 +250,12 @@ class Runtime:
         previous = signal.signal(signal.SIGINT, self._raw_sigint)
         for signum in (signal.SIGTERM, signal.SIGQUIT):
             loop.add_signal_handler(signum, self._on_sigterm, signum)
+        self.context.register_event_handler(OnShutdown(on_shutdown=self._on_shutdown_event))
         try:
             self.log("launch", "INFO", f"All log files can be found below {self.out.run_dir}")
             self.log("launch", "INFO", "Default logging verbosity is set to INFO")
             self.visit_safely(description)
-            while self._busy() and not self._cancelled:
-                self._wakeup.clear()
-                await self._wakeup.wait()
+            await self._loop_until_done()
             if self._cancelled:
                 self.log("launch", "ERROR", "run task was canceled")
                 self.return_code = 1

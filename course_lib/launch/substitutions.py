@@ -2,17 +2,36 @@
 
 from __future__ import annotations
 
+import importlib
+import math
 import os
+import shlex
+import shutil
+import subprocess
 from collections.abc import Iterable
 from typing import Any
 
+from .substitution import (
+    Substitution,
+    SubstitutionFailure,
+    TextSubstitution,
+    as_text,
+    describe_all,
+    normalize_to_list_of_substitutions,
+    perform_substitutions,
+)
+
 __all__ = [
+    "Command",
     "EnvironmentVariable",
+    "EqualsSubstitution",
     "ExecutableInPackage",
+    "FindExecutable",
     "FindPackagePrefix",
     "FindPackageShare",
     "LaunchConfiguration",
     "LocalSubstitution",
+    "NotEqualsSubstitution",
     "PathJoinSubstitution",
     "PythonExpression",
     "Substitution",
@@ -25,67 +44,6 @@ __all__ = [
 ]
 
 
-class SubstitutionFailure(RuntimeError):
-    """A substitution could not be performed (missing configuration, variable, ...)."""
-
-
-class Substitution:
-    """Base of every substitution: `perform(context)` returns text."""
-
-    def perform(self, context: Any) -> str:
-        """Return the text this substitution stands for."""
-        raise NotImplementedError
-
-    def describe(self) -> str:
-        """Return a short description, as `--show-args` prints it."""
-        return repr(self)
-
-    def __str__(self) -> str:
-        return self.describe()
-
-
-def normalize_to_list_of_substitutions(value: Any) -> list[Substitution]:
-    """Turn text, a substitution or an iterable of both into a list of substitutions."""
-    if isinstance(value, str):
-        return [TextSubstitution(text=value)]
-    if isinstance(value, Substitution):
-        return [value]
-    if isinstance(value, os.PathLike):
-        return [TextSubstitution(text=os.fspath(value))]
-    if isinstance(value, Iterable):
-        result: list[Substitution] = []
-        for item in value:
-            result.extend(normalize_to_list_of_substitutions(item))
-        return result
-    raise TypeError(
-        f"value '{value}' is not a str, Substitution or iterable of them ({type(value)})"
-    )
-
-
-def perform_substitutions(context: Any, subs: Iterable[Substitution]) -> str:
-    """Perform each substitution and join the texts."""
-    return "".join(sub.perform(context) for sub in subs)
-
-
-def _describe_all(subs: Iterable[Substitution]) -> str:
-    return " + ".join(sub.describe() for sub in subs)
-
-
-class TextSubstitution(Substitution):
-    """Plain text."""
-
-    def __init__(self, *, text: str) -> None:
-        if not isinstance(text, str):
-            raise TypeError(f"TextSubstitution expected Text object got '{type(text)}' instead.")
-        self.text = text
-
-    def perform(self, context: Any) -> str:
-        return self.text
-
-    def describe(self) -> str:
-        return f"'{self.text}'"
-
-
 class LocalSubstitution(Substitution):
     """A value from the context's locals, e.g. `ros_specific_arguments['name']`."""
 
@@ -94,9 +52,8 @@ class LocalSubstitution(Substitution):
         self.description = description
 
     def perform(self, context: Any) -> str:
-        name, _, key = self.expression.partition("[")
-        value = context.locals[name]
-        return str(value[key.strip("]'\"")] if key else value)
+        # launch evaluates `context.locals.<expression>` (e.g. `event.reason`).
+        return eval("context.locals." + self.expression, {"context": context})
 
     def describe(self) -> str:
         return self.description or f"LocalVar('{self.expression}')"
@@ -124,7 +81,7 @@ class LaunchConfiguration(Substitution):
         return perform_substitutions(context, self.default)
 
     def describe(self) -> str:
-        return f"LaunchConfig({_describe_all(self.variable_name)})"
+        return f"LaunchConfig({describe_all(self.variable_name)})"
 
 
 class EnvironmentVariable(Substitution):
@@ -146,7 +103,7 @@ class EnvironmentVariable(Substitution):
         return perform_substitutions(context, self.default_value)
 
     def describe(self) -> str:
-        return f"EnvVar({_describe_all(self.name)})"
+        return f"EnvVar({describe_all(self.name)})"
 
 
 class PathJoinSubstitution(Substitution):
@@ -159,7 +116,7 @@ class PathJoinSubstitution(Substitution):
         return os.path.join(*(perform_substitutions(context, s) for s in self.substitutions))
 
     def describe(self) -> str:
-        return f"PathJoin('{' + '.join(_describe_all(s) for s in self.substitutions)}')"
+        return f"PathJoin('{' + '.join(describe_all(s) for s in self.substitutions)}')"
 
 
 class PythonExpression(Substitution):
@@ -170,16 +127,16 @@ class PythonExpression(Substitution):
         self.python_modules = [normalize_to_list_of_substitutions(m) for m in python_modules]
 
     def perform(self, context: Any) -> str:
-        import importlib
-
         names = [perform_substitutions(context, m) for m in self.python_modules]
-        scope = {name: importlib.import_module(name) for name in names}
-        if "math" in scope:
-            scope.update(vars(scope["math"]))
-        return str(eval(perform_substitutions(context, self.expression), scope))
+        scope: dict[str, Any] = {}
+        for module in (importlib.import_module(name) for name in names):
+            if module is math:  # launch lets expressions use math's names bare
+                scope.update(vars(module))
+            scope[module.__name__] = module
+        return str(eval(perform_substitutions(context, self.expression), {}, scope))
 
     def describe(self) -> str:
-        return f"PythonExpr({_describe_all(self.expression)})"
+        return f"PythonExpr({describe_all(self.expression)})"
 
 
 class ThisLaunchFileDir(Substitution):
@@ -224,7 +181,7 @@ class FindPackagePrefix(Substitution):
         return self.find(perform_substitutions(context, self.package))
 
     def describe(self) -> str:
-        return f"{type(self).__name__}(pkg={_describe_all(self.package)})"
+        return f"{type(self).__name__}(pkg={describe_all(self.package)})"
 
 
 class FindPackageShare(FindPackagePrefix):
@@ -244,8 +201,6 @@ class ExecutableInPackage(FindPackagePrefix):
         self.executable = normalize_to_list_of_substitutions(executable)
 
     def perform(self, context: Any) -> str:
-        import shutil
-
         executable = perform_substitutions(context, self.executable)
         package = perform_substitutions(context, self.package)
         prefix = self.find(package)
@@ -263,6 +218,116 @@ class ExecutableInPackage(FindPackagePrefix):
         return found
 
     def describe(self) -> str:
-        return (
-            f"ExecInPkg(pkg={_describe_all(self.package)}, exec={_describe_all(self.executable)})"
-        )
+        return f"ExecInPkg(pkg={describe_all(self.package)}, exec={describe_all(self.executable)})"
+
+
+class FindExecutable(Substitution):
+    """The full path of an executable found on the PATH."""
+
+    def __init__(self, *, name: Any) -> None:
+        self.name = normalize_to_list_of_substitutions(name)
+
+    def perform(self, context: Any) -> str:
+        name = perform_substitutions(context, self.name)
+        found = shutil.which(name, path=context.environment.get("PATH"))
+        if found is None:
+            raise SubstitutionFailure(f"executable '{name}' not found on the PATH")
+        return found
+
+    def describe(self) -> str:
+        return f"FindExec({describe_all(self.name)})"
+
+
+_ON_STDERR = ("fail", "ignore", "warn", "capture")
+
+
+class Command(Substitution):
+    """The standard output of a command (split like a shell would, without a shell)."""
+
+    def __init__(self, command: Any, *, on_stderr: Any = "fail") -> None:
+        self.command = normalize_to_list_of_substitutions(command)
+        self.on_stderr = normalize_to_list_of_substitutions(on_stderr)
+
+    def perform(self, context: Any) -> str:
+        text = perform_substitutions(context, self.command)
+        on_stderr = perform_substitutions(context, self.on_stderr)
+        if on_stderr not in _ON_STDERR:
+            raise SubstitutionFailure(
+                "expected 'on_stderr' to be one of: 'fail', 'ignore', 'warn' or 'capture'"
+            )
+        stderr = subprocess.STDOUT if on_stderr == "capture" else subprocess.PIPE
+        try:
+            result = subprocess.run(
+                shlex.split(text), stdout=subprocess.PIPE, stderr=stderr, text=True, check=False
+            )
+        except FileNotFoundError as exc:
+            raise SubstitutionFailure(f"file not found: {exc}") from None
+        if result.returncode != 0:
+            message = f"executed command failed. Command: {text}"
+            if result.stderr:
+                message += f"\nCaptured stderr output: {result.stderr}"
+            raise SubstitutionFailure(message)
+        if result.stderr:
+            message = (
+                f"executed command showed stderr output. Command: {text}\n"
+                f"Captured stderr output:\n{result.stderr}"
+            )
+            if on_stderr == "fail":
+                raise SubstitutionFailure(message)
+            if on_stderr == "warn":
+                context.log("launch", "WARNING", message)
+        return result.stdout
+
+    def describe(self) -> str:
+        return f"Command({describe_all(self.command)})"
+
+
+def _is_bool(text: str) -> bool:
+    return text.lower() in ("true", "false", "1", "0")
+
+
+def _is_float(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+class EqualsSubstitution(Substitution):
+    """`true` when both sides are equal (as booleans, as numbers, else as text)."""
+
+    def __init__(self, left: Any, right: Any) -> None:
+        self.left = normalize_to_list_of_substitutions(_as_text(left))
+        self.right = normalize_to_list_of_substitutions(_as_text(right))
+
+    def _equal(self, context: Any) -> bool:
+        left = perform_substitutions(context, self.left)
+        right = perform_substitutions(context, self.right)
+        if _is_bool(left) and _is_bool(right):
+            return (left.lower() in ("true", "1")) == (right.lower() in ("true", "1"))
+        if _is_float(left) and _is_float(right):
+            return math.isclose(float(left), float(right))
+        return left == right
+
+    def perform(self, context: Any) -> str:
+        return str(self._equal(context)).lower()
+
+    def describe(self) -> str:
+        return f"EqualsSubstitution({describe_all(self.left)} {describe_all(self.right)})"
+
+
+class NotEqualsSubstitution(EqualsSubstitution):
+    """`true` when the sides differ."""
+
+    def perform(self, context: Any) -> str:
+        return str(not self._equal(context)).lower()
+
+    def describe(self) -> str:
+        return f"NotEqualsSubstitution({describe_all(self.left)} {describe_all(self.right)})"
+
+
+def _as_text(value: Any) -> Any:
+    if value is None:
+        return ""
+    return str(value).lower() if isinstance(value, bool) else as_text(value)

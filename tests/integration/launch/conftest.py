@@ -57,9 +57,11 @@ def launch_env(
 class RawLaunch:
     """`python -m course_lib.launch ...` in its own process group, bytes kept exactly."""
 
-    def __init__(self, argv: list[str], env: dict[str, str]) -> None:
+    def __init__(
+        self, argv: list[str], env: dict[str, str], *, command: list[str] | None = None
+    ) -> None:
         self.proc = subprocess.Popen(
-            [sys.executable, "-m", "course_lib.launch", *argv],
+            [*(command or [sys.executable, "-m", "course_lib.launch"]), *argv],
             env=env,
             stdin=subprocess.DEVNULL,
             stdout=subprocess.PIPE,
@@ -122,6 +124,27 @@ def raw_launch(launch_env: dict[str, str]) -> Iterator:
 
     def start(*argv: str) -> RawLaunch:
         run = RawLaunch(list(argv), launch_env)
+        started.append(run)
+        return run
+
+    yield start
+    for run in started:
+        run.kill()
+
+
+ROS2 = Path(sys.executable).parent / "ros2"  # the course's console command, as in a terminal
+
+
+@pytest.fixture
+def ros2_launch(launch_env: dict[str, str]) -> Iterator:
+    """Start `ros2 launch ...` (the console command); kill what is left at the end."""
+    env = dict(launch_env)
+    env["PATH"] = os.pathsep.join([str(ROS2.parent), env.get("PATH", "")])
+    env["USER"] = "learner"
+    started: list[RawLaunch] = []
+
+    def start(*argv: str) -> RawLaunch:
+        run = RawLaunch(list(argv), env, command=[str(ROS2), "launch"])
         started.append(run)
         return run
 

@@ -67,3 +67,26 @@ def test_unknown_xml_tag_is_reported(tmp_path: Path) -> None:
     path.write_text("<launch><nod pkg='a' exec='b'/></launch>")
     with pytest.raises(Exception, match="RuntimeError: Unrecognized entity of the type: nod"):
         load_any_launch_file(str(path))
+
+
+def test_tags_and_substitutions_the_course_lacks_fail_in_one_line(tmp_path: Path) -> None:
+    from course_lib.launch.loading import CourseUnavailableError
+
+    container = tmp_path / "container.launch.xml"
+    container.write_text(
+        '<launch><node_container pkg="rclcpp_components" exec="component_container" '
+        'name="c" namespace=""/></launch>'
+    )
+    with pytest.raises(CourseUnavailableError) as tag:
+        load_any_launch_file(str(container))
+    assert str(tag.value).startswith(
+        "'node_container' (a launch file tag) is not available in this course; it has: arg, "
+    )
+    anon = tmp_path / "anon.launch.yaml"
+    anon.write_text("launch:\n- log:\n    message: $(anon talker)\n")
+    with pytest.raises(CourseUnavailableError, match=r"^'\$\(anon \.\.\.\)' is not available"):
+        load_any_launch_file(str(anon))
+    typo = tmp_path / "typo.launch.xml"
+    typo.write_text("<launch><nodee/></launch>")
+    with pytest.raises(Exception, match="Unrecognized entity of the type: nodee"):
+        load_any_launch_file(str(typo))
