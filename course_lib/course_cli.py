@@ -42,9 +42,9 @@ def _doctor(_args: argparse.Namespace) -> int:
 def _stop(_args: argparse.Namespace) -> int:
     from .doctor import stop_all
 
-    stopped = stop_all()
-    print(f"Stopped {len(stopped)} course process(es)." if stopped else "No course process runs.")
-    return 0
+    report = stop_all()
+    print(report.render())
+    return 1 if report.left else 0
 
 
 COMMANDS = {
@@ -53,7 +53,7 @@ COMMANDS = {
     "test": (_test, "run the whole test suite"),
     "notebooks": (_notebooks, "re-execute the notebooks to refresh their stored outputs"),
     "doctor": (_doctor, "say what is installed and which course processes run"),
-    "stop": (_stop, "stop every course process of this user"),
+    "stop": (_stop, "stop this user's course processes (labs, simulations, nodes, daemons)"),
 }
 
 

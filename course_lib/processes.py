@@ -4,7 +4,8 @@ Every child runs in its own process group with ``PR_SET_PDEATHSIG`` set, so the 
 kills it when the spawning thread dies, whatever the cause (SIGKILL included). Linux ties
 that signal to the *thread* that forked, so all children are forked from one long-lived
 spawner thread. Each child also carries ``COURSE_OWNER=<pid>:<start time>`` in its
-environment, which lets a later session find and kill what a crashed one left behind.
+environment, which lets a later session find and kill what a crashed one left behind, and
+``COURSE_PROCESS=<name>``, which `make stop` prints (see ownership.py for the rule).
 """
 
 from __future__ import annotations
@@ -26,9 +27,11 @@ from pathlib import Path
 from .errors import ProcessStartError
 
 __all__ = [
+    "NAME_ENV",
     "OWNER_ENV",
     "ChildProcess",
     "OutputLine",
+    "owner_alive",
     "owner_tag",
     "pid_alive",
     "process_environ",
@@ -37,6 +40,7 @@ __all__ = [
 ]
 
 OWNER_ENV = "COURSE_OWNER"
+NAME_ENV = "COURSE_PROCESS"
 _PR_SET_PDEATHSIG = 1
 _MAX_LINES = 5000
 _spawner = ThreadPoolExecutor(max_workers=1, thread_name_prefix="course-spawner")
@@ -72,7 +76,8 @@ def owner_tag(pid: int | None = None) -> str:
     return f"{pid}:{_start_time(pid)}"
 
 
-def _owner_alive(tag: str) -> bool:
+def owner_alive(tag: str) -> bool:
+    """Return True while the process named by owner tag `tag` (pid and start time) runs."""
     pid, _, started = tag.partition(":")
     return pid.isdigit() and _start_time(int(pid)) == started
 
@@ -247,6 +252,7 @@ def spawn(
     """Start `argv` as a child that dies with this process and return its handle."""
     child_env = dict(os.environ if env is None else env)
     child_env[OWNER_ENV] = owner_tag()
+    child_env[NAME_ENV] = name
     child_env.setdefault("PYTHONUNBUFFERED", "1")
     pipe = subprocess.PIPE if capture else None
 
@@ -284,18 +290,30 @@ def process_environ(pid: int) -> dict[str, str]:
 
 
 def _orphans() -> list[int]:
-    me = os.getpid()
+    """Return this user's processes whose owner tag names a process that is gone."""
+    me, uid = os.getpid(), os.getuid()
     found = []
     for entry in Path("/proc").iterdir():
-        if entry.name.isdigit() and int(entry.name) != me:
+        if entry.name.isdigit() and int(entry.name) != me and _uid(entry) == uid:
             tag = process_environ(int(entry.name)).get(OWNER_ENV)
-            if tag and not _owner_alive(tag):
+            if tag and not owner_alive(tag):
                 found.append(int(entry.name))
     return found
 
 
+def _uid(proc_dir: Path) -> int | None:
+    try:
+        return proc_dir.stat().st_uid
+    except OSError:
+        return None
+
+
 def reap_orphans(*, rounds: int = 4) -> list[int]:
-    """Kill course processes whose owner is gone (and then theirs); return their PIDs."""
+    """Kill this user's course processes whose owner is gone (then theirs); return their PIDs.
+
+    Only processes whose owner tag names a dead process: never one whose owner still runs
+    (JupyterLab's terminals and the learner's programs in them name the live lab).
+    """
     killed: list[int] = []
     for _ in range(rounds):
         batch = _orphans()
