@@ -30,6 +30,8 @@ __all__ = [
     "ProcessInfo",
     "course_processes",
     "current_lab",
+    "is_course_lab",
+    "lab_markers",
     "protected_pids",
     "read_process",
 ]
@@ -160,15 +162,24 @@ def _socket_holders(table: dict[int, ProcessInfo]) -> set[int]:
     return holders
 
 
-def _lab_pids(table: dict[int, ProcessInfo]) -> set[int]:
-    """Return running labs named by their markers (a reused pid is no course lab)."""
-    found = set()
+def lab_markers() -> dict[int, list[Path]]:
+    """Return the files in the runtime folder that name a lab (``lab-<pid>.*``), by pid."""
+    found: dict[int, list[Path]] = {}
     for marker in runtime_dir().glob("lab-*.*"):
         pid = marker.name.removeprefix("lab-").split(".", 1)[0]
-        info = table.get(int(pid)) if pid.isdigit() else None
-        if info is not None and "course_lib" in " ".join(info.argv):
-            found.add(info.pid)
+        if pid.isdigit():
+            found.setdefault(int(pid), []).append(marker)
     return found
+
+
+def is_course_lab(pid: int, table: dict[int, ProcessInfo] | None = None) -> bool:
+    """Return True if `pid` runs a course lab of this user (a reused pid is none)."""
+    info = read_process(pid) if table is None else table.get(pid)
+    return info is not None and info.uid == os.getuid() and "course_lib" in " ".join(info.argv)
+
+
+def _lab_pids(table: dict[int, ProcessInfo]) -> set[int]:
+    return {pid for pid in lab_markers() if is_course_lab(pid, table)}
 
 
 def _reason(info: ProcessInfo, table: dict[int, ProcessInfo], labs: set[int]) -> str:
