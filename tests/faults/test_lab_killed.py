@@ -20,7 +20,7 @@ from course_lib.paths import REPO_ROOT
 from course_lib.testing import independent_env
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "browser"))
-from lab_server import LabServer  # noqa: E402
+from lab_server import LabServer
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
