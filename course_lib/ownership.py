@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .paths import runtime_dir
-from .processes import NAME_ENV, OWNER_ENV, owner_alive, process_environ
+from .processes import NAME_ENV, OWNER_ENV, owner_alive, process_environ, tag_names
 
 __all__ = [
     "LAB_ENV",
@@ -188,7 +188,7 @@ def _reason(info: ProcessInfo, table: dict[int, ProcessInfo], labs: set[int]) ->
         if not owner_alive(owner):
             return "leftover"
         parent = table.get(info.ppid)
-        if parent is not None and owner == f"{parent.pid}:{parent.start}":
+        if parent is not None and tag_names(owner, parent.pid, parent.start):
             return "child"
     return "lab" if info.pid in labs else ""
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
+import functools
 import os
 import re
 import signal
@@ -37,6 +38,7 @@ __all__ = [
     "process_environ",
     "reap_orphans",
     "spawn",
+    "tag_names",
 ]
 
 OWNER_ENV = "COURSE_OWNER"
@@ -70,16 +72,44 @@ def pid_alive(pid: int) -> bool:
     return _start_time(pid) is not None
 
 
+@functools.cache
+def _pid_namespace() -> str:
+    """Return the id of this process's PID namespace (pids mean nothing outside it)."""
+    try:
+        return os.readlink("/proc/self/ns/pid").strip("pid:[]")
+    except OSError:
+        return ""
+
+
 def owner_tag(pid: int | None = None) -> str:
-    """Return the tag that marks children of process `pid` (default: this process)."""
+    """Return the tag that marks children of process `pid` (default: this process).
+
+    ``<pid>:<start time>:<PID namespace>``: a reused pid, or the same pid in another
+    namespace (a container, `unshare --pid`), never matches.
+    """
     pid = os.getpid() if pid is None else pid
-    return f"{pid}:{_start_time(pid)}"
+    return f"{pid}:{_start_time(pid)}:{_pid_namespace()}"
+
+
+def tag_names(tag: str, pid: int, start: str | None) -> bool:
+    """Return True if owner tag `tag` names process `pid` started at `start` (this namespace)."""
+    owner, _, rest = tag.partition(":")
+    started, _, namespace = rest.partition(":")
+    same_namespace = namespace in ("", _pid_namespace())  # "": a tag of an older release
+    return same_namespace and owner == str(pid) and start is not None and started == start
 
 
 def owner_alive(tag: str) -> bool:
-    """Return True while the process named by owner tag `tag` (pid and start time) runs."""
-    pid, _, started = tag.partition(":")
-    return pid.isdigit() and _start_time(int(pid)) == started
+    """Return True unless the process that owner tag `tag` names is gone.
+
+    A tag from another PID namespace cannot be judged from here: it counts as alive, so
+    nothing of a container's or another namespace's sessions is ever reaped from outside.
+    """
+    owner, _, rest = tag.partition(":")
+    namespace = rest.partition(":")[2]
+    if namespace not in ("", _pid_namespace()):
+        return True
+    return owner.isdigit() and tag_names(tag, int(owner), _start_time(int(owner)))
 
 
 def _die_with_parent(parent_pid: int) -> Callable[[], None]:

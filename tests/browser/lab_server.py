@@ -47,7 +47,7 @@ class LabServer:
             f"--LabApp.user_settings_dir={folder / '.jupyterlab-settings'}",
         ]  # fmt: skip
         self.process: ChildProcess = spawn(
-            argv, name="jupyterlab", env=env, cwd=REPO_ROOT, merge_stderr=True
+            argv, name="lab", env=env, cwd=REPO_ROOT, merge_stderr=True
         )
         line = self.process.wait_for_line(r"http://127\.0\.0\.1:\d+/lab", timeout)
         if line is None:
