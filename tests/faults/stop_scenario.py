@@ -30,7 +30,7 @@ from course_lib.testing import independent_env  # noqa: E402
 PY = sys.executable
 NODE_SCRIPT = (
     "from course_lib.session import get_session; s = get_session();"
-    "n = s.run(\"parameter_tests\", \"param_vel\"); print(\"node-pid=%d\" % n.pid, flush=True);"
+    'n = s.run("parameter_tests", "param_vel"); print("node-pid=%d" % n.pid, flush=True);'
     "import time; time.sleep(600)"
 )
 
