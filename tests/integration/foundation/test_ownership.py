@@ -17,7 +17,7 @@ import pytest
 
 from course_lib.ownership import course_processes, protected_pids, read_process
 from course_lib.paths import runtime_dir
-from course_lib.processes import NAME_ENV, OWNER_ENV, owner_tag, spawn
+from course_lib.processes import NAME_ENV, OWNER_ENV, owner_tag, reap_orphans, spawn
 from course_lib.testing import independent_env
 
 SLEEP = [sys.executable, "-c", "import time; time.sleep(120)"]
@@ -159,3 +159,13 @@ def process_env(pid: int) -> dict[str, str]:
     info = read_process(pid)
     assert info is not None
     return info.env
+
+
+def test_reaping_spares_a_copied_tag_of_a_live_process(started) -> None:
+    live_owner = subprocess.Popen(SLEEP)
+    copied = subprocess.Popen(
+        SLEEP, env={**independent_env(), OWNER_ENV: owner_tag(live_owner.pid)}
+    )
+    started += [live_owner, copied]
+    assert copied.pid not in reap_orphans()
+    assert copied.poll() is None
