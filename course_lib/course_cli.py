@@ -65,7 +65,13 @@ def main(argv: list[str] | None = None) -> int:
         sub.add_parser(name, help=summary).set_defaults(func=func)
     args, extra = parser.parse_known_args(argv)
     args.extra = extra  # passed through to jupyter lab or pytest
-    return int(args.func(args))
+    from .errors import CourseError
+
+    try:
+        return int(args.func(args))
+    except CourseError as exc:  # expected problems (a runtime folder not private...): no traceback
+        print(exc, file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

@@ -22,7 +22,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .paths import runtime_dir
-from .processes import NAME_ENV, OWNER_ENV, owner_alive, process_environ, tag_names
+from .processes import (
+    NAME_ENV,
+    OWNER_ENV,
+    OWNER_NS_ENV,
+    owner_alive,
+    process_environ,
+    tag_names,
+)
 
 __all__ = [
     "LAB_ENV",
@@ -55,6 +62,10 @@ class ProcessInfo:
     @property
     def owner(self) -> str:
         return self.env.get(OWNER_ENV, "")
+
+    @property
+    def owner_namespace(self) -> str:
+        return self.env.get(OWNER_NS_ENV, "")
 
 
 @dataclass(frozen=True)
@@ -118,7 +129,7 @@ def _ancestors(pid: int, table: dict[int, ProcessInfo]) -> set[int]:
 def current_lab() -> int | None:
     """Return the pid of the lab this process runs in (a lab's terminal or kernel), if any."""
     tag = os.environ.get(OWNER_ENV, "")
-    if os.environ.get(LAB_ENV) == "1" and owner_alive(tag):
+    if os.environ.get(LAB_ENV) == "1" and owner_alive(tag, os.environ.get(OWNER_NS_ENV, "")):
         return int(tag.partition(":")[0])
     return None
 
@@ -183,12 +194,12 @@ def _lab_pids(table: dict[int, ProcessInfo]) -> set[int]:
 
 
 def _reason(info: ProcessInfo, table: dict[int, ProcessInfo], labs: set[int]) -> str:
-    owner = info.owner
+    owner, namespace = info.owner, info.owner_namespace
     if owner:
-        if not owner_alive(owner):
+        if not owner_alive(owner, namespace):
             return "leftover"
         parent = table.get(info.ppid)
-        if parent is not None and tag_names(owner, parent.pid, parent.start):
+        if parent is not None and tag_names(owner, parent.pid, parent.start, namespace):
             return "child"
     return "lab" if info.pid in labs else ""
 

@@ -30,11 +30,13 @@ from .errors import ProcessStartError
 __all__ = [
     "NAME_ENV",
     "OWNER_ENV",
+    "OWNER_NS_ENV",
     "ChildProcess",
     "OutputLine",
     "owner_alive",
     "owner_tag",
     "pid_alive",
+    "pid_namespace",
     "process_environ",
     "reap_orphans",
     "spawn",
@@ -42,6 +44,7 @@ __all__ = [
 ]
 
 OWNER_ENV = "COURSE_OWNER"
+OWNER_NS_ENV = "COURSE_OWNER_NS"  # the PID namespace in which COURSE_OWNER's pid is meant
 NAME_ENV = "COURSE_PROCESS"
 _PR_SET_PDEATHSIG = 1
 _MAX_LINES = 5000
@@ -73,7 +76,7 @@ def pid_alive(pid: int) -> bool:
 
 
 @functools.cache
-def _pid_namespace() -> str:
+def pid_namespace() -> str:
     """Return the id of this process's PID namespace (pids mean nothing outside it)."""
     try:
         return os.readlink("/proc/self/ns/pid").strip("pid:[]")
@@ -82,33 +85,36 @@ def _pid_namespace() -> str:
 
 
 def owner_tag(pid: int | None = None) -> str:
-    """Return the tag that marks children of process `pid` (default: this process).
-
-    ``<pid>:<start time>:<PID namespace>``: a reused pid, or the same pid in another
-    namespace (a container, `unshare --pid`), never matches.
-    """
+    """Return the tag that marks children of process `pid` (default: this process)."""
     pid = os.getpid() if pid is None else pid
-    return f"{pid}:{_start_time(pid)}:{_pid_namespace()}"
+    return f"{pid}:{_start_time(pid)}"
 
 
-def tag_names(tag: str, pid: int, start: str | None) -> bool:
-    """Return True if owner tag `tag` names process `pid` started at `start` (this namespace)."""
-    owner, _, rest = tag.partition(":")
-    started, _, namespace = rest.partition(":")
-    same_namespace = namespace in ("", _pid_namespace())  # "": a tag of an older release
-    return same_namespace and owner == str(pid) and start is not None and started == start
+def _other_namespace(namespace: str) -> bool:
+    return namespace not in ("", pid_namespace())
 
 
-def owner_alive(tag: str) -> bool:
+def tag_names(tag: str, pid: int, start: str | None, namespace: str = "") -> bool:
+    """Return True if owner tag `tag` (set in PID namespace `namespace`) names `pid`."""
+    owner, _, started = tag.partition(":")
+    return (
+        not _other_namespace(namespace)
+        and owner == str(pid)
+        and start is not None
+        and started == start
+    )
+
+
+def owner_alive(tag: str, namespace: str = "") -> bool:
     """Return True unless the process that owner tag `tag` names is gone.
 
-    A tag from another PID namespace cannot be judged from here: it counts as alive, so
-    nothing of a container's or another namespace's sessions is ever reaped from outside.
+    A tag set in another PID namespace (a container, `unshare --pid`; see OWNER_NS_ENV)
+    cannot be judged from here: it counts as alive, so nothing of another namespace's
+    sessions is ever reaped from outside.
     """
-    owner, _, rest = tag.partition(":")
-    namespace = rest.partition(":")[2]
-    if namespace not in ("", _pid_namespace()):
+    if _other_namespace(namespace):
         return True
+    owner = tag.partition(":")[0]
     return owner.isdigit() and tag_names(tag, int(owner), _start_time(int(owner)))
 
 
@@ -282,6 +288,7 @@ def spawn(
     """Start `argv` as a child that dies with this process and return its handle."""
     child_env = dict(os.environ if env is None else env)
     child_env[OWNER_ENV] = owner_tag()
+    child_env[OWNER_NS_ENV] = pid_namespace()
     child_env[NAME_ENV] = name
     child_env.setdefault("PYTHONUNBUFFERED", "1")
     pipe = subprocess.PIPE if capture else None
@@ -325,8 +332,9 @@ def _orphans() -> list[int]:
     found = []
     for entry in Path("/proc").iterdir():
         if entry.name.isdigit() and int(entry.name) != me and _uid(entry) == uid:
-            tag = process_environ(int(entry.name)).get(OWNER_ENV)
-            if tag and not owner_alive(tag):
+            env = process_environ(int(entry.name))
+            tag = env.get(OWNER_ENV)
+            if tag and not owner_alive(tag, env.get(OWNER_NS_ENV, "")):
                 found.append(int(entry.name))
     return found
 

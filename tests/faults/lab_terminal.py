@@ -21,13 +21,13 @@ __all__ = ["RestTerminal", "rest"]
 _OPENER = urllib.request.build_opener(urllib.request.ProxyHandler({}))  # the lab is local
 
 
-def rest(base_url: str, token: str, method: str, path: str) -> Any:
+def rest(base_url: str, token: str, method: str, path: str, body: Any = None) -> Any:
     """Send one request to the Jupyter server's REST API; return its JSON reply (or None)."""
     request = urllib.request.Request(
         f"{base_url}{path}", method=method, headers={"Authorization": f"token {token}"}
     )
-    if method == "POST":
-        request.data = b"{}"
+    if method in ("POST", "PUT"):
+        request.data = json.dumps(body or {}).encode()
     deadline = time.monotonic() + 15.0
     while True:
         try:

@@ -1,4 +1,7 @@
-"""A SIGKILLed `make lab` leaves nothing running; the next one says so and carries on."""
+"""A SIGKILLed `make lab` leaves nothing running; the next one says so and carries on.
+
+It also opens with no stale tabs: the workspace a lab (or a test's lab) saved stays its own.
+"""
 
 from __future__ import annotations
 
@@ -25,6 +28,8 @@ from lab_server import LabServer
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 FOLDER = REPO_ROOT / "test-artifacts" / "faults" / "lab-killed"
+STALE_TAB = "notebook:test-artifacts/browser/lab-x/11_beyond_the_tutorial.ipynb"
+WORKSPACE = "/lab/api/workspaces/default"
 
 
 @pytest.fixture
@@ -40,6 +45,10 @@ def test_killed_lab_leaves_nothing_and_next_lab_says_so(private_tmp) -> None:
     try:
         terminal = RestTerminal(lab.base_url, lab.token)
         rest(lab.base_url, lab.token, "POST", "/api/kernels")
+        # the page saves its open tabs in the workspace, as the browser tests' pages do
+        stale = {"data": {STALE_TAB: {"data": {"path": STALE_TAB[9:], "factory": "Notebook"}}}}
+        rest(lab.base_url, lab.token, "PUT", WORKSPACE, {**stale, "metadata": {"id": "default"}})
+        assert STALE_TAB in rest(lab.base_url, lab.token, "GET", WORKSPACE)["data"]
         tree = [p.pid for p in psutil.Process(lab.process.pid).children(recursive=True)]
         running = describe(tree)
         for part in ("jupyter-lab", "course_lib.ros2.daemon", "ipykernel"):
@@ -64,6 +73,7 @@ def test_killed_lab_leaves_nothing_and_next_lab_says_so(private_tmp) -> None:
         ), said[:2000]
         assert "ROS 2 course: ROS_DOMAIN_ID=" in said.splitlines()[1]
         assert RestTerminal(again.base_url, again.token).run("echo ok-$((6*7))", "ok-42")
+        assert STALE_TAB not in rest(again.base_url, again.token, "GET", WORKSPACE)["data"]
     finally:
         again.stop()
     runtime = Path(private_tmp["TMPDIR"]) / f"ros2-course-{os.getuid()}"

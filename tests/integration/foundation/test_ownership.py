@@ -17,7 +17,15 @@ import pytest
 
 from course_lib.ownership import course_processes, protected_pids, read_process
 from course_lib.paths import runtime_dir
-from course_lib.processes import NAME_ENV, OWNER_ENV, owner_tag, reap_orphans, spawn
+from course_lib.processes import (
+    NAME_ENV,
+    OWNER_ENV,
+    OWNER_NS_ENV,
+    owner_tag,
+    pid_namespace,
+    reap_orphans,
+    spawn,
+)
 from course_lib.testing import independent_env
 
 SLEEP = [sys.executable, "-c", "import time; time.sleep(120)"]
@@ -169,3 +177,17 @@ def test_reaping_spares_a_copied_tag_of_a_live_process(started) -> None:
     started += [live_owner, copied]
     assert copied.pid not in reap_orphans()
     assert copied.poll() is None
+
+
+def test_a_tag_from_another_pid_namespace_is_never_judged_here(started) -> None:
+    # pids of a container or `unshare --pid` mean other processes here: never reap by them
+    owner = subprocess.Popen([sys.executable, "-c", "pass"])
+    tag = owner_tag(owner.pid)
+    owner.wait()
+    env = {**independent_env(), OWNER_ENV: tag}
+    elsewhere = subprocess.Popen(SLEEP, env={**env, OWNER_NS_ENV: "1"})
+    here = subprocess.Popen(SLEEP, env={**env, OWNER_NS_ENV: pid_namespace()})
+    started += [elsewhere, here]
+    found = reasons()
+    assert elsewhere.pid not in found and found.get(here.pid) == "leftover"
+    assert elsewhere.pid not in reap_orphans()
