@@ -55,10 +55,10 @@ def named_child(pid: int, word: str) -> int:
 
 def printed_by_stop(output: str) -> str:
     """Return what `course_lib stop` printed in the terminal (no echo, prompt or escapes)."""
-    text = re.sub(r"\x1b\[[0-9;?]*[a-zA-Z]|\r", "", output)
+    text = re.sub(r"\x1b\[[0-9;?]*[a-zA-Z]|\r", "", output).rsplit("stop-exit=", 1)[0]
     lines = text.splitlines()
-    typed = max(i for i, line in enumerate(lines) if "-m course_lib stop" in line)
-    return "\n".join(lines[typed + 1 :])
+    typed = [i for i, line in enumerate(lines) if "-m course_lib stop" in line]
+    return "\n".join(lines[typed[-1] + 1 if typed else 0 :])
 
 
 def main() -> None:
@@ -76,11 +76,11 @@ def main() -> None:
     pids["node"] = int(started[1])
     pids["script"] = read_process(pids["node"]).ppid  # type: ignore[union-attr]
 
-    began = time.monotonic()
+    began, before = time.monotonic(), len(terminal.output)
     inside = terminal.run(f"{PY} -m course_lib stop; echo stop-exit=$?", r"stop-exit=(\d+)")
     facts["inside_seconds"] = round(time.monotonic() - began, 2)
     facts["inside_exit"] = int(inside[1])
-    facts["inside_output"] = printed_by_stop(inside.string[: inside.start()])
+    facts["inside_output"] = printed_by_stop(terminal.output[before:])
     facts["alive_after_inside"] = {name: pid_alive(pid) for name, pid in pids.items()}
     facts["shell_answers"] = bool(terminal.run("echo still-$((2+3))", r"still-5"))
     terminal.close()
