@@ -45,10 +45,9 @@ class StopReport:
         lines = []
         if self.stopped:
             lines.append(f"Stopped {len(self.stopped)} course process(es):")
-            lines += [
-                f"  {s.name} (pid {s.pid})" + ("" if s.signal == "SIGINT" else f", {s.signal}")
-                for s in self.stopped
-            ]
+            for s in self.stopped:
+                how = "" if s.signal == "SIGINT" else f" after {s.signal}"
+                lines.append(f"  {s.name} (pid {s.pid}){how}")
         else:
             lines.append("No course process runs.")
         lines += [f"Could not stop {p.name} (pid {p.pid})." for p in self.left]
