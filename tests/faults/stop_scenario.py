@@ -28,11 +28,22 @@ from course_lib.paths import REPO_ROOT  # noqa: E402
 from course_lib.testing import independent_env  # noqa: E402
 
 PY = sys.executable
-NODE_SCRIPT = (
-    "from course_lib.session import get_session; s = get_session();"
-    'n = s.run("parameter_tests", "param_vel"); print("node-pid=%d" % n.pid, flush=True);'
-    "import time; time.sleep(600)"
+# The learner's script in the terminal: a session with the tutorial node, and a child that
+# ignores SIGINT and SIGTERM (only SIGKILL ends it).
+LEARNER_SCRIPT = """
+import sys, time
+from course_lib.session import get_session
+session = get_session()
+node = session.run("parameter_tests", "param_vel")
+stubborn = session.spawn(
+    [sys.executable, "-c", "import signal, time; signal.signal(signal.SIGINT, signal.SIG_IGN);"
+     "signal.signal(signal.SIGTERM, signal.SIG_IGN); print('up', flush=True); time.sleep(600)"],
+    name="stubborn",
 )
+stubborn.wait_for_line("up", 10)
+print(f"node-pid={node.pid} stubborn-pid={stubborn.pid}", flush=True)
+time.sleep(600)
+"""
 
 
 def children(pid: int) -> list[int]:
@@ -63,7 +74,9 @@ def printed_by_stop(output: str) -> str:
 
 def main() -> None:
     env = independent_env()
-    lab = LabServer([], REPO_ROOT / "test-artifacts" / "faults" / "make-stop", env=env)
+    folder = REPO_ROOT / "test-artifacts" / "faults" / "make-stop"
+    lab = LabServer([], folder, env=env)
+    (folder / "learner.py").write_text(LEARNER_SCRIPT)
     facts: dict[str, object] = {}
     pids = {"lab": lab.process.pid}
     pids["jupyterlab"] = named_child(lab.process.pid, "jupyter-lab")
@@ -72,8 +85,10 @@ def main() -> None:
     pids["shell"] = terminal.shell_pid
     # the learner's own programs, which inherit the lab's environment (and its owner tag)
     pids["editor"] = int(terminal.run("sleep 600 & echo bg-pid=$!", r"bg-pid=(\d+)")[1])
-    started = terminal.run(f"{PY} -c '{NODE_SCRIPT}' &", r"node-pid=(\d+)", timeout=90)
-    pids["node"] = int(started[1])
+    started = terminal.run(
+        f"{PY} {folder / 'learner.py'} &", r"node-pid=(\d+) stubborn-pid=(\d+)", timeout=90
+    )
+    pids["node"], pids["stubborn"] = int(started[1]), int(started[2])
     pids["script"] = read_process(pids["node"]).ppid  # type: ignore[union-attr]
 
     began, before = time.monotonic(), len(terminal.output)

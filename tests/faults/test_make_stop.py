@@ -71,6 +71,7 @@ def test_in_a_lab_terminal_stop_keeps_the_lab_and_the_learners_programs(facts: d
         "shell": True,
         "editor": True,
         "node": False,
+        "stubborn": False,
         "script": True,
     }, facts["inside_output"]
     assert facts["shell_answers"]
@@ -79,7 +80,8 @@ def test_in_a_lab_terminal_stop_keeps_the_lab_and_the_learners_programs(facts: d
 
 def test_stop_says_what_it_stopped_and_that_the_lab_stays(facts: dict) -> None:
     said, pids = facts["inside_output"], facts["pids"]
-    assert f"  param_vel (pid {pids['node']})" in said
+    assert f"  param_vel (pid {pids['node']})\n" in said
+    assert f"  stubborn (pid {pids['stubborn']}) after SIGKILL\n" in said  # SIGINT, SIGTERM
     assert "  ros2-daemon-" in said and f"(pid {pids['daemon']})" in said
     assert f"This terminal belongs to the lab (pid {pids['lab']})" in said
     assert f"pid {pids['shell']}" not in said and f"pid {pids['editor']}" not in said
