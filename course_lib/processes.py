@@ -4,8 +4,9 @@ Every child runs in its own process group with ``PR_SET_PDEATHSIG`` set, so the 
 kills it when the spawning thread dies, whatever the cause (SIGKILL included). Linux ties
 that signal to the *thread* that forked, so all children are forked from one long-lived
 spawner thread. Each child also carries ``COURSE_OWNER=<pid>:<start time>`` in its
-environment, which lets a later session find and kill what a crashed one left behind, and
-``COURSE_PROCESS=<name>``, which `make stop` prints (see ownership.py for the rule).
+environment (with ``COURSE_OWNER_NS``, the PID namespace that pid belongs to), which lets a
+later session find and kill what a crashed one left behind, and ``COURSE_PROCESS=<name>``,
+which `make stop` prints (see ownership.py for the rule).
 """
 
 from __future__ import annotations
