@@ -34,7 +34,7 @@ format: setup
 doctor: setup  ## Say what is installed and what is running
 	$(PY) -m course_lib doctor
 
-stop: ## Stop every course process of this user
+stop: ## Stop this user's course processes (labs, simulations, viewers, nodes, daemons)
 	$(PY) -m course_lib stop
 
 $(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py

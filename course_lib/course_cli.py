@@ -42,9 +42,9 @@ def _doctor(_args: argparse.Namespace) -> int:
 def _stop(_args: argparse.Namespace) -> int:
     from .doctor import stop_all
 
-    stopped = stop_all()
-    print(f"Stopped {len(stopped)} course process(es)." if stopped else "No course process runs.")
-    return 0
+    report = stop_all()
+    print(report.render())
+    return 1 if report.left else 0
 
 
 COMMANDS = {
@@ -53,7 +53,7 @@ COMMANDS = {
     "test": (_test, "run the whole test suite"),
     "notebooks": (_notebooks, "re-execute the notebooks to refresh their stored outputs"),
     "doctor": (_doctor, "say what is installed and which course processes run"),
-    "stop": (_stop, "stop every course process of this user"),
+    "stop": (_stop, "stop this user's course processes (labs, simulations, nodes, daemons)"),
 }
 
 
@@ -65,7 +65,13 @@ def main(argv: list[str] | None = None) -> int:
         sub.add_parser(name, help=summary).set_defaults(func=func)
     args, extra = parser.parse_known_args(argv)
     args.extra = extra  # passed through to jupyter lab or pytest
-    return int(args.func(args))
+    from .errors import CourseError
+
+    try:
+        return int(args.func(args))
+    except CourseError as exc:  # expected problems (a runtime folder not private...): no traceback
+        print(exc, file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

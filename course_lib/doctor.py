@@ -5,12 +5,12 @@ from __future__ import annotations
 import contextlib
 import os
 import platform
-import signal
 from importlib import metadata
 from pathlib import Path
 
 from . import ament
 from .processes import OWNER_ENV, process_environ
+from .stopping import StopReport, stop_course
 
 __all__ = ["course_processes", "report", "stop_all"]
 
@@ -50,14 +50,9 @@ def course_processes() -> list[tuple[int, str]]:
     return sorted(found)
 
 
-def stop_all() -> list[int]:
-    """Kill every course process of this user (not this command's own ancestors)."""
-    stopped = []
-    for pid, _cmd in course_processes():
-        with contextlib.suppress(ProcessLookupError, PermissionError):
-            os.kill(pid, signal.SIGKILL)
-            stopped.append(pid)
-    return stopped
+def stop_all() -> StopReport:
+    """Stop this user's course processes: SIGINT, SIGTERM, SIGKILL (see stopping.py)."""
+    return stop_course()
 
 
 def _version(dist: str) -> str:

@@ -9,6 +9,7 @@ __all__ = [
     "ExecutableNotFoundError",
     "PackageNotFoundError",
     "ProcessStartError",
+    "RuntimeDirError",
     "SessionClosedError",
 ]
 
@@ -64,7 +65,11 @@ class SessionClosedError(CourseError):
 
 
 class DomainUnavailableError(CourseError):
-    """Every usable ROS domain id on this host is taken by other course sessions."""
+    """Every usable ROS domain id on this host is in use (course sessions or other programs)."""
+
+
+class RuntimeDirError(CourseError):
+    """The course's runtime folder (locks, markers, sockets) is not private to this user."""
 
 
 class ConfigError(CourseError):

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import signal
 from collections.abc import Sequence
 from typing import Any
 
 from .domain import lease_domain
+from .lab_leftovers import clean_up_killed_labs, workspaces_dir
 from .machine.protocol import SOCKET_ENV
 from .paths import NOTEBOOKS_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
 from .processes import ChildProcess, pid_alive, spawn
@@ -68,6 +70,9 @@ def _start_machine(env: dict[str, str]) -> Any:
 
 def run_lab(extra: Sequence[str] = ()) -> int:
     """Start the ros2 daemon and JupyterLab in a leased domain; stop both on Ctrl-C."""
+    note = clean_up_killed_labs()
+    if note:
+        print(note)
     lease = lease_domain()
     marker = runtime_dir() / f"lab-{os.getpid()}.domain"
     marker.write_text(str(lease.domain_id))
@@ -78,7 +83,11 @@ def run_lab(extra: Sequence[str] = ()) -> int:
     print(f"ROS 2 course: ROS_DOMAIN_ID={lease.domain_id} for this JupyterLab and its terminals.")
     children: list[ChildProcess] = [start_daemon(env)]
     signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop cleanly on SIGTERM too
-    lab = spawn(lab_argv(extra), name="jupyterlab", env=env, cwd=REPO_ROOT, capture=False)
+    # A workspace folder of its own: lesson 1 opens without the tabs of earlier labs or tests.
+    workspaces = workspaces_dir(os.getpid())
+    workspaces.mkdir(mode=0o700, exist_ok=True)
+    argv = lab_argv([f"--LabApp.workspaces_dir={workspaces}", *extra])
+    lab = spawn(argv, name="jupyterlab", env=env, cwd=REPO_ROOT, capture=False)
     children.append(lab)
     try:
         code = lab.wait()
@@ -90,5 +99,6 @@ def run_lab(extra: Sequence[str] = ()) -> int:
             child.stop(timeout=5.0)
         machine.stop()
         marker.unlink(missing_ok=True)
+        shutil.rmtree(workspaces, ignore_errors=True)
         lease.release()
     return code or 0

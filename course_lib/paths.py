@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
+import stat
 import sys
 import tempfile
 from pathlib import Path
+
+from .errors import RuntimeDirError
 
 __all__ = [
     "CONFIG_DIR",
@@ -13,6 +17,7 @@ __all__ = [
     "PACKAGE_DIR",
     "REPO_ROOT",
     "ROSJECT_DIR",
+    "SOCKET_NAME_MAX",
     "WORKSPACE_INSTALL_DIR",
     "runtime_dir",
     "venv_bin_dir",
@@ -24,12 +29,59 @@ ROSJECT_DIR = REPO_ROOT / "rosject"
 WORKSPACE_INSTALL_DIR = ROSJECT_DIR / "install"
 CONFIG_DIR = REPO_ROOT / "config"
 NOTEBOOKS_DIR = REPO_ROOT / "notebooks"
+SOCKET_NAME_MAX = 32  # the longest socket name in runtime_dir() ("ros2-daemon-232.sock": 20)
+_SUN_PATH_MAX = 108  # bytes of a Unix socket path, its final NUL included
+_POSIX_TMP = Path(os.sep, "tmp")  # where Python's tempfile goes without TMPDIR: always short
+
+
+def _runtime_candidates() -> list[Path]:
+    """Return where the runtime folder may live, best first (TMPDIR's temp folder first)."""
+    name = f"ros2-course-{os.getuid()}"
+    found = [Path(tempfile.gettempdir()) / name]
+    if os.environ.get("XDG_RUNTIME_DIR"):  # private to the user by the XDG specification
+        found.append(Path(os.environ["XDG_RUNTIME_DIR"]) / "ros2-course")
+    found.append(_POSIX_TMP / name)
+    return found
+
+
+def _check_private(path: Path) -> None:
+    """Refuse a runtime folder that is not a directory of this user closed to everyone else."""
+    info = path.lstat()
+    if not stat.S_ISDIR(info.st_mode):
+        raise RuntimeDirError(
+            f"The course's runtime folder {path} is not a folder (a file or a link is there).",
+            hint=f"remove it (`rm {path}`), then retry.",
+        )
+    if info.st_uid != os.getuid():
+        raise RuntimeDirError(
+            f"The course's runtime folder {path} belongs to another user (uid {info.st_uid}),"
+            " who could see or replace this course's locks and sockets.",
+            hint=f"ask that user or an administrator to remove {path}, or set TMPDIR to a "
+            "folder of your own (`export TMPDIR=$HOME/.cache/tmp` after creating it).",
+        )
+    if info.st_mode & 0o077:
+        raise RuntimeDirError(
+            f"The course's runtime folder {path} is open to other users "
+            f"(mode {stat.S_IMODE(info.st_mode):o}); its sockets must be private.",
+            hint=f"make it private with `chmod 700 {path}`, then retry.",
+        )
 
 
 def runtime_dir() -> Path:
-    """Return this user's private folder for locks and sockets, creating it."""
-    path = Path(tempfile.gettempdir()) / f"ros2-course-{os.getuid()}"
-    path.mkdir(mode=0o700, exist_ok=True)
+    """Return this user's private folder for locks, markers and sockets, creating it.
+
+    The folder is checked on every call: a directory owned by this user with no group or
+    other access, else RuntimeDirError says what to do. Its path leaves room for any socket
+    name of the course within the 108-byte limit of Unix socket paths, whatever TMPDIR is.
+    """
+    candidates = _runtime_candidates()
+    path = next(
+        (c for c in candidates if len(os.fsencode(c)) + 1 + SOCKET_NAME_MAX < _SUN_PATH_MAX),
+        candidates[-1],
+    )
+    with contextlib.suppress(FileExistsError):
+        path.mkdir(mode=0o700)
+    _check_private(path)
     return path
 
 

@@ -4,13 +4,16 @@ Every child runs in its own process group with ``PR_SET_PDEATHSIG`` set, so the 
 kills it when the spawning thread dies, whatever the cause (SIGKILL included). Linux ties
 that signal to the *thread* that forked, so all children are forked from one long-lived
 spawner thread. Each child also carries ``COURSE_OWNER=<pid>:<start time>`` in its
-environment, which lets a later session find and kill what a crashed one left behind.
+environment (with ``COURSE_OWNER_NS``, the PID namespace that pid belongs to), which lets a
+later session find and kill what a crashed one left behind, and ``COURSE_PROCESS=<name>``,
+which `make stop` prints (see ownership.py for the rule).
 """
 
 from __future__ import annotations
 
 import contextlib
 import ctypes
+import functools
 import os
 import re
 import signal
@@ -26,17 +29,24 @@ from pathlib import Path
 from .errors import ProcessStartError
 
 __all__ = [
+    "NAME_ENV",
     "OWNER_ENV",
+    "OWNER_NS_ENV",
     "ChildProcess",
     "OutputLine",
+    "owner_alive",
     "owner_tag",
     "pid_alive",
+    "pid_namespace",
     "process_environ",
     "reap_orphans",
     "spawn",
+    "tag_names",
 ]
 
 OWNER_ENV = "COURSE_OWNER"
+OWNER_NS_ENV = "COURSE_OWNER_NS"  # the PID namespace in which COURSE_OWNER's pid is meant
+NAME_ENV = "COURSE_PROCESS"
 _PR_SET_PDEATHSIG = 1
 _MAX_LINES = 5000
 _spawner = ThreadPoolExecutor(max_workers=1, thread_name_prefix="course-spawner")
@@ -66,15 +76,47 @@ def pid_alive(pid: int) -> bool:
     return _start_time(pid) is not None
 
 
+@functools.cache
+def pid_namespace() -> str:
+    """Return the id of this process's PID namespace (pids mean nothing outside it)."""
+    try:
+        return os.readlink("/proc/self/ns/pid").strip("pid:[]")
+    except OSError:
+        return ""
+
+
 def owner_tag(pid: int | None = None) -> str:
     """Return the tag that marks children of process `pid` (default: this process)."""
     pid = os.getpid() if pid is None else pid
     return f"{pid}:{_start_time(pid)}"
 
 
-def _owner_alive(tag: str) -> bool:
-    pid, _, started = tag.partition(":")
-    return pid.isdigit() and _start_time(int(pid)) == started
+def _other_namespace(namespace: str) -> bool:
+    return namespace not in ("", pid_namespace())
+
+
+def tag_names(tag: str, pid: int, start: str | None, namespace: str = "") -> bool:
+    """Return True if owner tag `tag` (set in PID namespace `namespace`) names `pid`."""
+    owner, _, started = tag.partition(":")
+    return (
+        not _other_namespace(namespace)
+        and owner == str(pid)
+        and start is not None
+        and started == start
+    )
+
+
+def owner_alive(tag: str, namespace: str = "") -> bool:
+    """Return True unless the process that owner tag `tag` names is gone.
+
+    A tag set in another PID namespace (a container, `unshare --pid`; see OWNER_NS_ENV)
+    cannot be judged from here: it counts as alive, so nothing of another namespace's
+    sessions is ever reaped from outside.
+    """
+    if _other_namespace(namespace):
+        return True
+    owner = tag.partition(":")[0]
+    return owner.isdigit() and tag_names(tag, int(owner), _start_time(int(owner)))
 
 
 def _die_with_parent(parent_pid: int) -> Callable[[], None]:
@@ -247,6 +289,8 @@ def spawn(
     """Start `argv` as a child that dies with this process and return its handle."""
     child_env = dict(os.environ if env is None else env)
     child_env[OWNER_ENV] = owner_tag()
+    child_env[OWNER_NS_ENV] = pid_namespace()
+    child_env[NAME_ENV] = name
     child_env.setdefault("PYTHONUNBUFFERED", "1")
     pipe = subprocess.PIPE if capture else None
 
@@ -284,18 +328,31 @@ def process_environ(pid: int) -> dict[str, str]:
 
 
 def _orphans() -> list[int]:
-    me = os.getpid()
+    """Return this user's processes whose owner tag names a process that is gone."""
+    me, uid = os.getpid(), os.getuid()
     found = []
     for entry in Path("/proc").iterdir():
-        if entry.name.isdigit() and int(entry.name) != me:
-            tag = process_environ(int(entry.name)).get(OWNER_ENV)
-            if tag and not _owner_alive(tag):
+        if entry.name.isdigit() and int(entry.name) != me and _uid(entry) == uid:
+            env = process_environ(int(entry.name))
+            tag = env.get(OWNER_ENV)
+            if tag and not owner_alive(tag, env.get(OWNER_NS_ENV, "")):
                 found.append(int(entry.name))
     return found
 
 
+def _uid(proc_dir: Path) -> int | None:
+    try:
+        return proc_dir.stat().st_uid
+    except OSError:
+        return None
+
+
 def reap_orphans(*, rounds: int = 4) -> list[int]:
-    """Kill course processes whose owner is gone (and then theirs); return their PIDs."""
+    """Kill this user's course processes whose owner is gone (then theirs); return their PIDs.
+
+    Only processes whose owner tag names a dead process: never one whose owner still runs
+    (JupyterLab's terminals and the learner's programs in them name the live lab).
+    """
     killed: list[int] = []
     for _ in range(rounds):
         batch = _orphans()

@@ -21,7 +21,13 @@ ARTIFACTS = REPO_ROOT / "test-artifacts" / "browser"
 class LabServer:
     """`python -m course_lib lab` on copies of lessons (running them never rewrites notebooks/)."""
 
-    def __init__(self, lessons: list[str], folder: Path, timeout: float = 60.0) -> None:
+    def __init__(
+        self,
+        lessons: list[str],
+        folder: Path,
+        timeout: float = 60.0,
+        env: dict[str, str] | None = None,
+    ) -> None:
 
         self.folder = folder
         folder.mkdir(parents=True, exist_ok=True)
@@ -32,14 +38,16 @@ class LabServer:
                     cell.outputs, cell.execution_count = [], None
             nbformat.write(notebook, folder / name)
         self.token = secrets.token_hex(16)
-        env = independent_env()
+        env = env or independent_env()
         argv = [
             sys.executable, "-m", "course_lib", "lab",
             "--no-browser", "--ServerApp.port=0", f"--IdentityProvider.token={self.token}",
             "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+            # the test's own settings: never the learner's (~/.jupyter/lab/user-settings)
+            f"--LabApp.user_settings_dir={folder / '.jupyterlab-settings'}",
         ]  # fmt: skip
         self.process: ChildProcess = spawn(
-            argv, name="jupyterlab", env=env, cwd=REPO_ROOT, merge_stderr=True
+            argv, name="lab", env=env, cwd=REPO_ROOT, merge_stderr=True
         )
         line = self.process.wait_for_line(r"http://127\.0\.0\.1:\d+/lab", timeout)
         if line is None:

@@ -1,0 +1,95 @@
+"""A JupyterLab terminal opened and typed into through the server's REST and websocket API.
+
+The same requests the browser's terminal makes (tests/browser/terminal.py drives one from a
+page), without a browser: the shell is a real terminado process of the lab.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import re
+import time
+import urllib.error
+import urllib.request
+from typing import Any
+
+from tornado.websocket import websocket_connect
+
+__all__ = ["RestTerminal", "rest"]
+
+_OPENER = urllib.request.build_opener(urllib.request.ProxyHandler({}))  # the lab is local
+
+
+def rest(base_url: str, token: str, method: str, path: str, body: Any = None) -> Any:
+    """Send one request to the Jupyter server's REST API; return its JSON reply (or None)."""
+    request = urllib.request.Request(
+        f"{base_url}{path}", method=method, headers={"Authorization": f"token {token}"}
+    )
+    if method in ("POST", "PUT"):
+        request.data = json.dumps(body or {}).encode()
+    deadline = time.monotonic() + 15.0
+    while True:
+        try:
+            with _OPENER.open(request, timeout=30) as reply:
+                body = reply.read()
+            return json.loads(body) if body else None
+        except urllib.error.URLError as exc:  # the server prints its address a bit early
+            if not isinstance(exc.reason, ConnectionRefusedError) or time.monotonic() > deadline:
+                raise
+            time.sleep(0.1)
+
+
+async def _connect(url: str) -> Any:
+    return await websocket_connect(url)
+
+
+async def _read(ws: Any, timeout: float) -> str | None:
+    return await asyncio.wait_for(ws.read_message(), timeout)
+
+
+class RestTerminal:
+    """One terminal of a running JupyterLab, as the learner opens it from the launcher."""
+
+    def __init__(self, base_url: str, token: str) -> None:
+        self.base_url, self.token = base_url, token
+        self.name = rest(base_url, token, "POST", "/api/terminals")["name"]
+        self.output = ""
+        self._loop = asyncio.new_event_loop()
+        url = f"{base_url.replace('http', 'ws', 1)}/terminals/websocket/{self.name}"
+        self._ws = self._loop.run_until_complete(_connect(f"{url}?token={token}"))
+        self.shell_pid = int(self.run("echo shell-pid=$$", r"shell-pid=(\d+)")[1])
+
+    def run(self, command: str, expect: str, timeout: float = 60.0) -> re.Match[str]:
+        """Type `command`; wait until its output matches regex `expect` (not in its echo)."""
+        start = len(self.output)
+        self._ws.write_message(json.dumps(["stdin", command + "\r"]))
+        deadline = time.monotonic() + timeout
+        while True:
+            typed = self.output[start:].find("\n")  # skip the echoed command line
+            found = re.search(expect, self.output[start + typed + 1 :]) if typed >= 0 else None
+            if found:
+                return found
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                raise AssertionError(
+                    f"the terminal never printed /{expect}/ after `{command}`:\n"
+                    f"{self.output[start:][-3000:]}"
+                )
+            self._receive(remaining)
+
+    def _receive(self, timeout: float) -> None:
+        try:
+            message = self._loop.run_until_complete(_read(self._ws, timeout))
+        except asyncio.TimeoutError:
+            return
+        if message is None:
+            raise AssertionError(f"the terminal closed:\n{self.output[-3000:]}")
+        kind, *content = json.loads(message)
+        if kind == "stdout":
+            self.output += content[0]
+
+    def close(self) -> None:
+        """Close the websocket (the shell keeps running until the server ends it)."""
+        self._ws.close()
+        self._loop.close()

@@ -1,0 +1,119 @@
+"""`make stop` inside and outside a lab, run in a PID namespace of its own by test_make_stop.py.
+
+`python -m course_lib stop` stops every course process of the user: on a shared machine it
+would stop other sessions' processes too, so this scenario runs where it sees only its own
+(`unshare --pid --mount-proc`) with a runtime folder of its own (TMPDIR). It prints one JSON
+line of facts for the test to check.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parent / "browser")]
+
+from jupyter_kernels import describe, pid_alive  # noqa: E402
+from lab_server import LabServer  # noqa: E402
+from lab_terminal import RestTerminal  # noqa: E402
+
+from course_lib.ownership import read_process  # noqa: E402
+from course_lib.paths import REPO_ROOT  # noqa: E402
+from course_lib.testing import independent_env  # noqa: E402
+
+PY = sys.executable
+# The learner's script in the terminal: a session with the tutorial node, and a child that
+# ignores SIGINT and SIGTERM (only SIGKILL ends it).
+LEARNER_SCRIPT = """
+import sys, time
+from course_lib.session import get_session
+session = get_session()
+node = session.run("parameter_tests", "param_vel")
+stubborn = session.spawn(
+    [sys.executable, "-c", "import signal, time; signal.signal(signal.SIGINT, signal.SIG_IGN);"
+     "signal.signal(signal.SIGTERM, signal.SIG_IGN); print('up', flush=True); time.sleep(600)"],
+    name="stubborn",
+)
+stubborn.wait_for_line("up", 10)
+print(f"node-pid={node.pid} stubborn-pid={stubborn.pid}", flush=True)
+time.sleep(600)
+"""
+
+
+def children(pid: int) -> list[int]:
+    """Return the live children of `pid`."""
+    found = []
+    for entry in os.listdir("/proc"):
+        info = read_process(int(entry)) if entry.isdigit() else None
+        if info is not None and info.ppid == pid:
+            found.append(info.pid)
+    return found
+
+
+def named_child(pid: int, word: str) -> int:
+    """Return the child of `pid` whose command line contains `word`."""
+    for child in children(pid):
+        if word in " ".join(read_process(child).argv):  # type: ignore[union-attr]
+            return child
+    raise AssertionError(f"no child of {pid} runs {word}:\n{describe(children(pid))}")
+
+
+def printed_by_stop(output: str) -> str:
+    """Return what `course_lib stop` printed in the terminal (no echo, prompt or escapes)."""
+    text = re.sub(r"\x1b\[[0-9;?]*[a-zA-Z]|\r", "", output).rsplit("stop-exit=", 1)[0]
+    lines = text.splitlines()
+    typed = [i for i, line in enumerate(lines) if "-m course_lib stop" in line]
+    return "\n".join(lines[typed[-1] + 1 if typed else 0 :])
+
+
+def main() -> None:
+    env = independent_env()
+    folder = REPO_ROOT / "test-artifacts" / "faults" / "make-stop"
+    lab = LabServer([], folder, env=env)
+    (folder / "learner.py").write_text(LEARNER_SCRIPT)
+    facts: dict[str, object] = {}
+    pids = {"lab": lab.process.pid}
+    pids["jupyterlab"] = named_child(lab.process.pid, "jupyter-lab")
+    pids["daemon"] = named_child(lab.process.pid, "course_lib.ros2.daemon")
+    terminal = RestTerminal(lab.base_url, lab.token)
+    pids["shell"] = terminal.shell_pid
+    # the learner's own programs, which inherit the lab's environment (and its owner tag)
+    pids["editor"] = int(terminal.run("sleep 600 & echo bg-pid=$!", r"bg-pid=(\d+)")[1])
+    started = terminal.run(
+        f"{PY} {folder / 'learner.py'} &", r"node-pid=(\d+) stubborn-pid=(\d+)", timeout=90
+    )
+    pids["node"], pids["stubborn"] = int(started[1]), int(started[2])
+    pids["script"] = read_process(pids["node"]).ppid  # type: ignore[union-attr]
+
+    began, before = time.monotonic(), len(terminal.output)
+    inside = terminal.run(f"{PY} -m course_lib stop; echo stop-exit=$?", r"stop-exit=(\d+)")
+    facts["inside_seconds"] = round(time.monotonic() - began, 2)
+    facts["inside_exit"] = int(inside[1])
+    facts["inside_output"] = printed_by_stop(terminal.output[before:])
+    facts["alive_after_inside"] = {name: pid_alive(pid) for name, pid in pids.items()}
+    facts["shell_answers"] = bool(terminal.run("echo still-$((2+3))", r"still-5"))
+    terminal.close()
+
+    began = time.monotonic()
+    outside = subprocess.run(
+        [PY, "-m", "course_lib", "stop"], env=env, capture_output=True, text=True, check=False
+    )
+    facts["outside_seconds"] = round(time.monotonic() - began, 2)
+    facts["outside_exit"] = outside.returncode
+    facts["outside_output"] = outside.stdout + outside.stderr
+    lab.process.wait(10.0)
+    facts["alive_after_outside"] = {name: pid_alive(pid) for name, pid in pids.items()}
+    others = [int(e) for e in os.listdir("/proc") if e.isdigit() and int(e) != os.getpid()]
+    facts["left_running"] = describe([p for p in others if pid_alive(p)])
+    facts["pids"] = pids
+    print(json.dumps(facts), flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,95 @@
+"""`make stop` stops the course's processes and nothing else, inside a lab and outside.
+
+The scenario (stop_scenario.py) runs a real `make lab`-style JupyterLab with a terminal opened
+through Jupyter's REST and websocket API, in a PID namespace of its own: `make stop` there
+cannot reach the other processes of this machine.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import pytest
+
+from course_lib.testing import independent_env
+
+pytestmark = [pytest.mark.ros, pytest.mark.slow]
+
+SCENARIO = Path(__file__).with_name("stop_scenario.py")
+
+
+def _namespace_prefix() -> list[str]:
+    """Return the command prefix that runs a process in a new PID namespace, or skip."""
+    unshare = shutil.which("unshare")
+    if unshare is None:
+        pytest.skip("`unshare` (util-linux) is missing: it isolates `make stop` from this host")
+    prefix = [unshare, "--pid", "--fork", "--mount-proc", "--kill-child"]
+    if os.geteuid() != 0:
+        prefix[1:1] = ["--user", "--map-root-user"]
+    probe = subprocess.run([*prefix, "true"], capture_output=True, check=False)
+    if probe.returncode != 0:
+        pytest.skip(f"no PID namespace here ({probe.stderr.decode().strip()}): run as root, as CI")
+    return prefix
+
+
+@pytest.fixture(scope="module")
+def facts() -> dict:
+    prefix = _namespace_prefix()
+    tmp = tempfile.mkdtemp(prefix="ms")
+    try:
+        done = subprocess.run(
+            [*prefix, sys.executable, str(SCENARIO)],
+            env=independent_env(TMPDIR=tmp),
+            capture_output=True,
+            text=True,
+            timeout=240,
+            check=False,
+        )
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    lines = [line for line in done.stdout.splitlines() if line.startswith("{")]
+    assert done.returncode == 0 and lines, f"scenario failed:\n{done.stdout}\n{done.stderr}"
+    result = json.loads(lines[-1])
+    print(f"make stop in a lab terminal ({result['inside_seconds']} s):")
+    print(result["inside_output"])
+    print(f"make stop outside ({result['outside_seconds']} s):\n{result['outside_output']}")
+    return result
+
+
+def test_in_a_lab_terminal_stop_keeps_the_lab_and_the_learners_programs(facts: dict) -> None:
+    alive = facts["alive_after_inside"]
+    assert alive == {
+        "lab": True,
+        "jupyterlab": True,
+        "daemon": False,
+        "shell": True,
+        "editor": True,
+        "node": False,
+        "stubborn": False,
+        "script": True,
+    }, facts["inside_output"]
+    assert facts["shell_answers"]
+    assert facts["inside_exit"] == 0
+
+
+def test_stop_says_what_it_stopped_and_that_the_lab_stays(facts: dict) -> None:
+    said, pids = facts["inside_output"], facts["pids"]
+    assert f"  param_vel (pid {pids['node']})\n" in said
+    assert f"  stubborn (pid {pids['stubborn']}) after SIGKILL\n" in said  # SIGINT, SIGTERM
+    assert "  ros2-daemon-" in said and f"(pid {pids['daemon']})" in said
+    assert f"This terminal belongs to the lab (pid {pids['lab']})" in said
+    assert f"pid {pids['shell']}" not in said and f"pid {pids['editor']}" not in said
+
+
+def test_outside_a_lab_stop_ends_the_lab_and_leaves_nothing(facts: dict) -> None:
+    assert not any(facts["alive_after_outside"].values()), facts["alive_after_outside"]
+    assert facts["left_running"] == ""
+    said = facts["outside_output"]
+    assert f"  lab (pid {facts['pids']['lab']})" in said, said
+    assert facts["outside_exit"] == 0
