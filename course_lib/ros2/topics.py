@@ -9,7 +9,7 @@ import time
 from typing import Any
 
 from .client import DISCOVERY_WAIT_S, wait_until
-from .commands import Context
+from .context import Context
 from .msgyaml import message_to_yaml
 
 __all__ = ["topic_echo", "topic_hz"]
