@@ -407,3 +407,8 @@ def run(parser: Parser) -> None:
     parser.add_argument(
         "argv", nargs=argparse.REMAINDER, help="Pass arbitrary arguments to the executable"
     )
+
+
+def strategy(parser: Parser) -> None:
+    """Add ros2cli's node-strategy options (`--spin-time`, `-s`, `--no-daemon`)."""
+    _strategy(parser)
