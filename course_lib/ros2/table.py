@@ -57,8 +57,27 @@ def resolve(name: str) -> Callable[..., Any]:
     return getattr(importlib.import_module(f"{__package__}.{module}"), function)
 
 
+def _interface(name: str, doc: str) -> Verb:
+    arguments = f"interface_verbs:{name.rstrip('_')}_arguments"
+    return Verb(doc, f"interface_verbs:{name}", arguments, graph=False)
+
+
 _A = "verb_args"
 COMMANDS: dict[str, Command] = {
+    "interface": Command(
+        "Show information about ROS interfaces",
+        {
+            "list": _interface("list_", "List all interface types available"),
+            "package": _interface(
+                "package", "Output a list of available interface types within one package"
+            ),
+            "packages": _interface(
+                "packages", "Output a list of packages that provide interfaces"
+            ),
+            "proto": _interface("proto", "Output an interface prototype"),
+            "show": _interface("show", "Output the interface definition"),
+        },
+    ),
     "launch": Command("Run a launch file", raw="launch_verb:main"),
     "node": Command(
         "Various node related sub-commands",
