@@ -38,7 +38,7 @@ def _split(line: str) -> tuple[str, str | None]:
 
 
 def _is_comment(line: str) -> bool:
-    return line.startswith("#") and None is not _annotation(line.lstrip("#")) is not None
+    return line.startswith("#") and _annotation(line.lstrip("#")) is not None
 
 
 def _trailing(line: str) -> str | None:
