@@ -63,6 +63,7 @@ def _interface(name: str, doc: str) -> Verb:
 
 
 _A = "verb_args"
+_T = "topic_verbs:"
 COMMANDS: dict[str, Command] = {
     "interface": Command(
         "Show information about ROS interfaces",
@@ -157,13 +158,24 @@ COMMANDS: dict[str, Command] = {
     "topic": Command(
         "Various topic related sub-commands",
         {
+            "bw": Verb("Display bandwidth used by topic", "topic_verbs:bw", _T + "bw_arguments"),
             "echo": Verb("Output messages from a topic", "topics:topic_echo", f"{_A}:topic_echo"),
+            "find": Verb(
+                "Output a list of available topics of a given type",
+                "topic_verbs:find",
+                _T + "find_arguments",
+            ),
             "hz": Verb(
                 "Print the average publishing rate to screen", "topics:topic_hz", f"{_A}:topic_hz"
+            ),
+            "info": Verb(
+                "Print information about a topic", "topic_verbs:info", _T + "info_arguments"
             ),
             "list": Verb(
                 "Output a list of available topics", "verbs:topic_list", f"{_A}:topic_list"
             ),
+            "pub": Verb("Publish a message to a topic", "topic_pub"),
+            "type": Verb("Print a topic's type", "topic_verbs:type_", _T + "type_arguments"),
         },
         leading=f"{_A}:topic_command",
     ),
