@@ -195,7 +195,7 @@ def topic_echo(args: argparse.Namespace, ctx: Context) -> Any:
                 break
     finally:
         node.destroy_subscription(sub)
-    return 0
+    return 2 if ctx.console.cancelled.is_set() else 0  # Ctrl-C: ros2cli's exit code
 
 
 def _info_text(info: Any) -> str:
@@ -258,4 +258,4 @@ def topic_hz(args: argparse.Namespace, ctx: Context) -> Any:
                 printed = last
     finally:
         node.destroy_subscription(sub)
-    return 0
+    return 2 if ctx.console.cancelled.is_set() else 0  # Ctrl-C: ros2cli's exit code
