@@ -86,3 +86,18 @@ def test_service_call_writes_once(door) -> None:  # type: ignore[no-untyped-def]
     case = CASES["service_call_set_parameters"]
     compare2(case, door(case["command"]))
     assert api.param_get("/param_vel_node", "velocity").value == 0.2
+
+
+def test_service_call_waits_for_its_server_until_ctrl_c(interrupted) -> None:  # type: ignore[no-untyped-def]
+    out = interrupted("ros2 service call /no_such_service std_srvs/srv/Empty", 2.0)
+    assert out == ("waiting for service to become available...\n", "", 2)
+
+
+def test_topic_pub_at_a_rate_until_ctrl_c(interrupted) -> None:  # type: ignore[no-untyped-def]
+    stdout, stderr, code = interrupted(
+        "ros2 topic pub -r 5 /chatter std_msgs/msg/String 'data: hi'", 2.0
+    )
+    assert (stderr, code) == ("", 2)
+    lines = stdout.split("\n\n")
+    assert lines[0] == "publisher: beginning loop\npublishing #1: std_msgs.msg.String(data='hi')"
+    assert 5 <= len(lines) <= 13, stdout

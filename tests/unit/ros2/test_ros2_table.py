@@ -81,3 +81,28 @@ def test_terminal_routing_follows_the_table() -> None:
     assert not table.uses_graph(["run", "p", "e"])
     assert not table.uses_graph(["launch", "p", "f"])
     assert not table.uses_graph(["action", "list"])
+
+
+def test_verb_help_lists_only_the_course_verbs() -> None:
+    out = run_collected(["pkg", "-h"])
+    assert out.exit_code == 0
+    assert "executables" in out.stdout and "prefix" in out.stdout
+    assert "create" not in out.stdout and "xml" not in out.stdout
+    topic = run_collected(["topic", "--help"]).stdout
+    for verb in ("bw", "echo", "find", "hz", "info", "list", "pub", "type"):
+        assert f"\n    {verb} " in topic or f"\n  {verb} " in topic, verb
+    assert "delay" not in topic
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["topic", "hz", "/cmd_vel", "-s"],
+        ["topic", "bw", "/cmd_vel", "--use-sim-time"],
+        ["topic", "echo", "/cmd_vel", "-s", "--timeout", "2"],
+    ],
+)
+def test_flags_the_course_cannot_honour_are_refused(argv: list[str]) -> None:
+    out = run_collected(argv)
+    assert out.exit_code == 1
+    assert "is not part of this course" in out.stderr
