@@ -58,7 +58,8 @@ def main(argv: list[str] | None = None) -> int:
 
     argv = list(sys.argv[1:] if argv is None else argv)
     domain = os.environ.get("ROS_DOMAIN_ID", "").strip() or _course_domain()
-    if not uses_graph(argv) or domain is None:
+    # `--stdin` reads this terminal's input, which the daemon does not have: run it here.
+    if not uses_graph(argv) or domain is None or "--stdin" in argv:
         return _local(argv, domain)
     from course_lib.ros2.connect import DaemonUnavailable, connect_or_start, request
 

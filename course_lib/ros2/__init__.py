@@ -29,6 +29,17 @@ _EXPORTS = {
         ),
         "api",
     ),
+    **dict.fromkeys(
+        (
+            "interface_show",
+            "service_call",
+            "service_list",
+            "service_type",
+            "topic_info",
+            "topic_publish",
+        ),
+        "api_more",
+    ),
     **dict.fromkeys(("NodeNotFoundError", "ParameterNotSetError", "TopicNotFoundError"), "errors"),
     "ParamFileError": "paramfile",
     **dict.fromkeys(

@@ -101,3 +101,30 @@ def test_topic_pub_at_a_rate_until_ctrl_c(interrupted) -> None:  # type: ignore[
     lines = stdout.split("\n\n")
     assert lines[0] == "publisher: beginning loop\npublishing #1: std_msgs.msg.String(data='hi')"
     assert 5 <= len(lines) <= 13, stdout
+
+
+def test_python_api_returns_structured_results(tutorial_node) -> None:  # type: ignore[no-untyped-def]
+    import course_lib.ros2 as ros2
+
+    reset_parameters({"param_vel_node"})
+    listed = dict(ros2.service_list())
+    assert listed["/param_vel_node/get_parameters"] == ["rcl_interfaces/srv/GetParameters"]
+    assert ros2.service_type("/param_vel_node/set_parameters") == (
+        "rcl_interfaces/srv/SetParameters"
+    )
+    response = ros2.service_call(
+        "/param_vel_node/get_parameters",
+        "rcl_interfaces/srv/GetParameters",
+        {"names": ["velocity"]},
+    )
+    assert response.values[0].double_value == 0.0
+    assert ros2.topic_info("/cmd_vel") == {
+        "types": ["geometry_msgs/msg/Twist"],
+        "publishers": 1,
+        "subscriptions": 0,
+    }
+    assert ros2.interface_show("std_srvs/srv/SetBool", comments=False) == (
+        "bool data #\n---\nbool success   #\nstring message #\n"
+    )
+    with pytest.raises(ros2.TopicNotFoundError):
+        ros2.service_type("/no_such_service")
