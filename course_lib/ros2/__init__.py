@@ -8,12 +8,13 @@ session's client node (course_lib.session) when they run.
 from __future__ import annotations
 
 import importlib
+import sys
+import types
 from typing import Any
 
 _EXPORTS = {
     **dict.fromkeys(
         (
-            "client",
             "node_info",
             "node_list",
             "param_delete",
@@ -32,7 +33,7 @@ _EXPORTS = {
     **dict.fromkeys(
         (
             "interface_show",
-            "service_call",
+            "call_service",
             "service_list",
             "service_type",
             "topic_info",
@@ -48,7 +49,7 @@ _EXPORTS = {
     **dict.fromkeys(("ParamValue", "parse_value"), "values"),
 }
 
-__all__ = sorted([*_EXPORTS, "start_daemon"])
+__all__ = sorted([*_EXPORTS, "client", "start_daemon"])
 
 
 def __getattr__(name: str) -> Any:
@@ -65,3 +66,21 @@ def start_daemon(env):  # type: ignore[no-untyped-def]
     from .daemon import start_daemon as _start
 
     return _start(env)
+
+
+class _Package(types.ModuleType):
+    """This package, whose `client` stays the API function once the module `client` loads."""
+
+    @property
+    def client(self) -> Any:
+        """Return api.client (the import system would put module ros2.client here)."""
+        from .api import client
+
+        return client
+
+    @client.setter
+    def client(self, _module: Any) -> None:
+        pass  # importing course_lib.ros2.client records it here; sys.modules keeps it
+
+
+sys.modules[__name__].__class__ = _Package

@@ -8,8 +8,8 @@ from typing import Any
 from .errors import TopicNotFoundError
 
 __all__ = [
+    "call_service",
     "interface_show",
-    "service_call",
     "service_list",
     "service_type",
     "topic_info",
@@ -41,7 +41,7 @@ def service_type(service: str) -> str:
     return types[0]
 
 
-def service_call(
+def call_service(
     service: str, srv_type: str, values: dict | None = None, *, timeout: float = 10.0
 ) -> Any:
     """Call a service once with a request filled from `values`; return the response message."""

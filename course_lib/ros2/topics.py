@@ -8,7 +8,7 @@ import queue
 import time
 from typing import Any
 
-from .client import DISCOVERY_WAIT_S, wait_until
+from .client import DISCOVERY_WAIT_S, YOUNG_CLIENT_S, wait_until
 from .context import Context
 from .msgyaml import message_to_yaml
 
@@ -226,7 +226,10 @@ def topic_hz(args: argparse.Namespace, ctx: Context) -> Any:
     if args.use_sim_time:
         return "`ros2 topic hz --use-sim-time` is not part of this course: it measures wall time."
     keep = _filter(args.filter_expr)
-    type_name = _type_of(ctx, args.topic_name)
+    # hz keeps waiting for a missing topic, so it warns at once (as ros2topic's blocking
+    # get_msg_class); only a young client first gives discovery its time.
+    young = max(0.0, YOUNG_CLIENT_S - ctx.client.age())
+    type_name = _type_of(ctx, args.topic_name, wait=young > 0)
     if type_name is None:
         ctx.console.out(
             f"WARNING: topic [{args.topic_name}] does not appear to be published yet\n"

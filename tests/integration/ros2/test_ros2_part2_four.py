@@ -9,7 +9,7 @@ import pytest
 from ros2_golden import GOLDEN, console_env, reset_parameters, run_api, run_console, start_node
 from ros2_golden_part2 import CASES, SKIPPED, SUBSCRIBER, compare2, names
 
-from course_lib.ros2 import api
+from course_lib.ros2 import api, api_more
 from course_lib.ros2.client import wait_until
 
 pytestmark = pytest.mark.ros
@@ -70,3 +70,9 @@ def test_echo_once_shows_the_set(door) -> None:  # type: ignore[no-untyped-def]
     assert api.param_set("/param_vel_node", "velocity", 0.3).successful
     runner.join(timeout=30)
     compare2(CASES[ECHO], got[0])
+
+
+def test_python_api_publishes_to_a_listener(nodes) -> None:  # type: ignore[no-untyped-def]
+    msg = api_more.topic_publish("/cmd_vel", "geometry_msgs/msg/Twist", {"linear": {"x": 0.1}})
+    assert msg.linear.x == 0.1
+    assert api_more.topic_info("/cmd_vel")["subscriptions"] >= 1

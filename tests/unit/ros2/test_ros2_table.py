@@ -106,3 +106,17 @@ def test_flags_the_course_cannot_honour_are_refused(argv: list[str]) -> None:
     out = run_collected(argv)
     assert out.exit_code == 1
     assert "is not part of this course" in out.stderr
+
+
+def test_package_exports_are_not_shadowed_by_modules() -> None:
+    """A verb module named like an exported function would replace it once imported."""
+    import importlib
+    import pkgutil
+
+    import course_lib.ros2 as package
+
+    for info in pkgutil.iter_modules(package.__path__):
+        if info.name not in ("daemon",):  # `python -m course_lib.ros2.daemon` serves forever
+            importlib.import_module(f"course_lib.ros2.{info.name}")
+    for name in package.__all__:
+        assert not isinstance(getattr(package, name), type(package)), name
