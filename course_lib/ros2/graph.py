@@ -6,7 +6,11 @@ from typing import Any
 
 from .client import YOUNG_CLIENT_S, wait_until
 
-__all__ = ["lookup", "own_prefix", "services"]
+__all__ = ["COURSE_CLIENTS", "lookup", "own_prefix", "services"]
+
+# The client nodes of the course's kernels and daemons (course_lib.session): like ros2cli's
+# own nodes, they offer no services to the learner.
+COURSE_CLIENTS = "/_course_client_"
 
 
 def own_prefix(client: Any) -> str:
