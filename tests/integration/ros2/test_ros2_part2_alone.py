@@ -132,3 +132,24 @@ def test_python_api_returns_structured_results(tutorial_node) -> None:  # type: 
     )
     with pytest.raises(ros2.TopicNotFoundError):
         ros2.service_type("/no_such_service")
+
+
+def test_service_call_repeats_at_its_rate_until_ctrl_c(interrupted) -> None:  # type: ignore[no-untyped-def]
+    stdout, stderr, code = interrupted(
+        "ros2 service call /param_vel_node/list_parameters rcl_interfaces/srv/ListParameters -r 5",
+        3.0,
+    )
+    assert (stderr, code) == ("", 2)
+    calls = stdout.replace("waiting for service to become available...\n", "")
+    request = "requester: making request: rcl_interfaces.srv.ListParameters_Request("
+    assert calls.count(request) >= 2 and calls.startswith(request), stdout
+    assert calls.count("response:\nrcl_interfaces.srv.ListParameters_Response(") >= 2
+
+
+def test_topic_pub_from_a_named_node(door) -> None:  # type: ignore[no-untyped-def]
+    out = door("ros2 topic pub -n my_publisher --once -w 0 /chatter std_msgs/msg/String 'data: x'")
+    assert out == (
+        "publisher: beginning loop\npublishing #1: std_msgs.msg.String(data='x')\n\n",
+        "",
+        0,
+    )
