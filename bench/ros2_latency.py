@@ -87,6 +87,12 @@ def _part2(env: dict[str, str], runs: int) -> None:
         "terminal python -c pass (floor)",
         _timed(lambda: subprocess.run(python, env=env, check=True), runs),
     )
+    from course_lib.ros2.commands import run_collected
+
+    _report(
+        "in-process ros2 interface show (no start)",
+        _timed(lambda: run_collected(list(PART2["interface show"][0])), runs),
+    )
     for label, (argv, case) in PART2.items():
         _terminal(env, *argv)  # warm the daemon
         _report(
