@@ -65,6 +65,43 @@ def _terminal(env: dict[str, str], *args: str) -> None:
     assert proc.returncode == 0, proc.stderr
 
 
+# The real tools for the part-2 verbs (tests/golden/ros2/cases_part2.json wall times).
+PART2 = {
+    "service list": (("service", "list"), "daemon_service_list_t"),
+    "topic info /cmd_vel": (("topic", "info", "/cmd_vel"), "daemon_topic_info_unknown"),
+    "interface show": (
+        ("interface", "show", "rcl_interfaces/msg/ParameterDescriptor"),
+        "interface_show_parameter_descriptor",
+    ),
+}
+
+
+def _part2(env: dict[str, str], runs: int) -> None:
+    """Terminal medians of the service/topic/interface verbs (target: under 0.1 s)."""
+    walls = {
+        c["case"]: c["wall_s"]
+        for c in json.loads((GOLDEN.parent / "cases_part2.json").read_text())
+    }
+    python = [str(REPO / ".venv" / "bin" / "python"), "-c", "pass"]
+    _report(
+        "terminal python -c pass (floor)",
+        _timed(lambda: subprocess.run(python, env=env, check=True), runs),
+    )
+    from course_lib.ros2.commands import run_collected
+
+    _report(
+        "in-process ros2 interface show (no start)",
+        _timed(lambda: run_collected(list(PART2["interface show"][0])), runs),
+    )
+    for label, (argv, case) in PART2.items():
+        _terminal(env, *argv)  # warm the daemon
+        _report(
+            f"terminal ros2 {label}",
+            _timed(lambda argv=argv: _terminal(env, *argv), runs),
+            f"real: {walls[case]:.2f} s ({case})",
+        )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--runs", type=int, default=30)
@@ -103,6 +140,7 @@ def main() -> None:
             ),
             _real_set(),
         )
+        _part2(env, runs // 2)
         node.stop()
         spawn_to_answer = []
         for _ in range(max(3, runs // 6)):

@@ -12,8 +12,6 @@ import sys
 
 __all__ = ["main"]
 
-_DAEMON_COMMANDS = {"node", "param", "topic"}
-
 
 def _terminal_env(domain: str | None) -> dict[str, str]:
     from course_lib.session import session_env
@@ -56,12 +54,12 @@ def _course_domain() -> str | None:
 
 def main(argv: list[str] | None = None) -> int:
     """Run `ros2 <argv>` and return its exit code."""
-    from course_lib.ros2.commands import command_of
+    from course_lib.ros2.table import uses_graph
 
     argv = list(sys.argv[1:] if argv is None else argv)
-    command = command_of(argv)
     domain = os.environ.get("ROS_DOMAIN_ID", "").strip() or _course_domain()
-    if command not in _DAEMON_COMMANDS or domain is None:
+    # `--stdin` reads this terminal's input, which the daemon does not have: run it here.
+    if not uses_graph(argv) or domain is None or "--stdin" in argv:
         return _local(argv, domain)
     from course_lib.ros2.connect import DaemonUnavailable, connect_or_start, request
 

@@ -136,8 +136,8 @@ def param_load(node: str, path: str, *, use_wildcard: bool = True) -> list[SetRe
 
 def topic_echo_once(topic: str, *, timeout: float = 5.0) -> Any:
     """Return the next message published on `topic` (a ROS message object)."""
-    from .commands import Context
     from .console import CollectingConsole
+    from .context import Context
     from .topics import _expand, _import_message, _type_of
 
     ctx = Context(CollectingConsole(), client)

@@ -262,6 +262,10 @@ class RosClient:
         response = self._call(node_name, "describe_parameters", request)
         return [_descriptor(d) for d in response.descriptors]
 
+    def age(self) -> float:
+        """Return how long this client node has been discovering the graph, in seconds."""
+        return time.monotonic() - self._born
+
     def close(self) -> None:
         """Destroy the cached service clients."""
         with self._lock:

@@ -3,74 +3,47 @@
 from __future__ import annotations
 
 import argparse
+import difflib
 import traceback
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from collections.abc import Callable
 from typing import Any
 
-from . import parsers
+from . import parsers, table
 from .console import CollectingConsole, Console
+from .context import Context
 from .results import CommandOutput
 
-__all__ = ["Context", "execute", "run_collected"]
-
-# Verbs that need no ROS graph (and so no rclpy) at all.
-LOCAL_VERBS = {("pkg", "executables"), ("pkg", "prefix")}
-
-
-@dataclass
-class Context:
-    """What a verb may use: the console, a ROS client made on first use, the caller's cwd/env."""
-
-    console: Console
-    client_factory: Callable[[], Any] | None = None
-    cwd: str | None = None
-    env: Mapping[str, str] = field(default_factory=dict)
-    background_run: Callable[..., Any] | None = None
-    _client: Any = None
-
-    @property
-    def client(self) -> Any:
-        """Return the RosClient (created on first use)."""
-        if self._client is None:
-            if self.client_factory is None:
-                raise RuntimeError("this door has no ROS client")
-            self._client = self.client_factory()
-        return self._client
+__all__ = ["Context", "execute", "not_in_course", "run_collected"]
 
 
 def _handler(command: str, verb: str | None) -> Callable[[argparse.Namespace, Context], Any]:
-    from . import pkg, topics, verbs
-
-    table: dict[tuple[str, str | None], Callable[[argparse.Namespace, Context], Any]] = {
-        ("node", "list"): verbs.node_list,
-        ("node", "info"): verbs.node_info,
-        ("topic", "list"): verbs.topic_list,
-        ("topic", "echo"): topics.topic_echo,
-        ("topic", "hz"): topics.topic_hz,
-        ("param", "list"): verbs.param_list,
-        ("param", "get"): verbs.param_get,
-        ("param", "set"): verbs.param_set,
-        ("param", "describe"): verbs.param_describe,
-        ("param", "dump"): verbs.param_dump,
-        ("param", "load"): verbs.param_load,
-        ("param", "delete"): verbs.param_delete,
-        ("pkg", "executables"): pkg.pkg_executables,
-        ("pkg", "prefix"): pkg.pkg_prefix,
-        ("run", None): pkg.run,
-    }
-    found = table.get((command, verb))
-    if found is None:
-        return _not_available
-    return found
+    entry = table.COMMANDS[command]
+    chosen = entry.own if entry.verbs is None else entry.verbs[verb or ""]
+    assert chosen is not None
+    return table.resolve(chosen.handler)
 
 
-def _not_available(args: argparse.Namespace, ctx: Context) -> str:
-    words = " ".join(w for w in (args._command, getattr(args, "_verb", None)) if w)
-    return (
-        f"`ros2 {words}` is not part of this course's ros2 commands "
-        "(it has: node, topic list|echo|hz, param, pkg executables|prefix, run, launch)."
-    )
+def _has() -> str:
+    return f"This course's ros2 has: {', '.join(table.available())} (see `ros2 --help`).\n"
+
+
+def not_in_course(argv: list[str]) -> tuple[str, int] | None:
+    """Return (message, exit code) for a command or verb the course lacks, else None."""
+    command, verb = table.verb_of(argv)
+    if command is None:
+        return None
+    if command not in table.COMMANDS:
+        hint = table.absent_hint(command)
+        if hint is not None:
+            return f"`ros2 {command}` is not part of this course's ros2. {hint}\n" + _has(), 1
+        real = [*table.COMMANDS, *(w for w in table.ELSEWHERE if " " not in w)]
+        close = difflib.get_close_matches(command, real, n=1)
+        guess = f" Did you mean `ros2 {close[0]}`?" if close else ""
+        return f"ros2: unknown command '{command}'.{guess}\n" + _has(), 2
+    hint = table.absent_hint(f"{command} {verb}") if verb else None
+    if hint is not None:
+        return f"`ros2 {command} {verb}` is not part of this course's ros2. {hint}\n" + _has(), 1
+    return None
 
 
 def _finish(rc: Any, console: Console) -> int:
@@ -98,21 +71,16 @@ def command_of(argv: list[str]) -> str | None:
     return None
 
 
-def launch(argv: list[str], console: Console) -> int:
-    """Hand `ros2 launch ...` to course_lib.launch (it prints straight to this process)."""
-    rest = argv[argv.index("launch") + 1 :]
-    try:
-        from ..launch import cli as launch_cli
-    except ImportError as exc:
-        console.err(f"ros2 launch is not available in this course yet ({exc}).\n")
-        return 1
-    return int(launch_cli.main(rest) or 0)
-
-
 def execute(argv: list[str], ctx: Context) -> int:
     """Run `ros2 <argv>` writing to ctx.console; return the exit code."""
-    if command_of(argv) == "launch":
-        return launch(argv, ctx.console)
+    command = command_of(argv)
+    raw = table.COMMANDS[command].raw if command in table.COMMANDS else None
+    if command is not None and raw is not None:
+        return int(table.resolve(raw)(argv[argv.index(command) + 1 :], ctx) or 0)
+    refused = not_in_course(argv)
+    if refused is not None:
+        ctx.console.err(refused[0])
+        return refused[1]
     sink = parsers._Sink(width=ctx.console.width)
     token = parsers.output_sink.set(sink)
     try:
@@ -142,6 +110,8 @@ def execute(argv: list[str], ctx: Context) -> int:
         return _finish(_handler(command, verb)(args, ctx), ctx.console)
     except KeyboardInterrupt:
         return 2  # ros2cli returns signal.SIGINT
+    except RuntimeError as exc:  # ros2cli prints a verb's RuntimeError and exits 1
+        return _finish(getattr(exc, "cli_message", None) or str(exc), ctx.console)
     except Exception as exc:
         message = getattr(exc, "cli_message", None)
         if message:

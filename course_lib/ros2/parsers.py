@@ -12,8 +12,9 @@ import sys
 import types
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
-from . import verb_args
+from . import table
 
 __all__ = ["COMMANDS", "ParseExit", "Spec", "output_sink", "parse"]
 
@@ -36,10 +37,30 @@ class _Sink:
 output_sink: contextvars.ContextVar[_Sink] = contextvars.ContextVar("ros2_parse_sink")
 
 
-class _Parser(argparse.ArgumentParser):
-    """An ArgumentParser writing into the current sink and raising instead of exiting."""
+class _Formatter(argparse.RawDescriptionHelpFormatter):
+    """Help text wrapped to the width of the console the command prints to."""
 
-    def _print_message(self, message: str, file=None) -> None:  # type: ignore[no-untyped-def]
+    def __init__(self, prog: str, **kwargs: Any) -> None:
+        # `width` is HelpFormatter's constructor argument in CPython 3.10-3.13;
+        # tests/unit/ros2/test_ros2_argparse_tripwires.py fails if that changes.
+        sink = output_sink.get(None)
+        kwargs.setdefault("width", (sink.width if sink else 80) - 2)
+        super().__init__(prog, **kwargs)
+
+
+class _Parser(argparse.ArgumentParser):
+    """An ArgumentParser writing into the current sink and raising instead of exiting.
+
+    Only public methods are overridden (print_help, print_usage, exit, error): argparse
+    routes all of its output and exits through them.
+    """
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs["formatter_class"] = _Formatter
+        super().__init__(*args, **kwargs)
+
+    @staticmethod
+    def _emit(message: str, file: Any) -> None:
         if message:
             sink = output_sink.get()
             to_stderr = file is _Stderr or file is sys.stderr
@@ -47,21 +68,18 @@ class _Parser(argparse.ArgumentParser):
 
     def exit(self, status: int = 0, message: str | None = None):  # type: ignore[no-untyped-def]
         if message:
-            self._print_message(message, _Stderr)
+            self._emit(message, _Stderr)
         raise ParseExit(status)
 
     def print_help(self, file=None) -> None:  # type: ignore[no-untyped-def]
-        self._print_message(self.format_help(), file)
+        self._emit(self.format_help(), file)
 
     def print_usage(self, file=None) -> None:  # type: ignore[no-untyped-def]
-        self._print_message(self.format_usage(), file)
+        self._emit(self.format_usage(), file)
 
     def error(self, message: str):  # type: ignore[no-untyped-def]
         self.print_usage(_Stderr)
         self.exit(2, f"{self.prog}: error: {message}\n")
-
-    def _get_formatter(self) -> argparse.HelpFormatter:
-        return self.formatter_class(prog=self.prog, width=output_sink.get().width - 2)
 
 
 class _StderrMarker:
@@ -73,75 +91,23 @@ _Stderr = _StderrMarker()
 
 @dataclass(frozen=True)
 class Spec:
-    """A command or verb: its one-line doc, how to add its arguments, its sub-verbs."""
+    """A command or verb: its one-line doc, the builder of its arguments, its sub-verbs."""
 
     doc: str
-    add_arguments: Callable[[argparse.ArgumentParser], None] | None = None
+    add_arguments: str | None = None  # `module:function` in course_lib.ros2 (see table)
     verbs: dict[str, Spec] | None = None
-    leading: Callable[[argparse.ArgumentParser], None] | None = None
+    leading: str | None = None
 
 
-_NODE = {"info": "Output information about a node", "list": "Output a list of available nodes"}
-_PARAM = {
-    "delete": "Delete parameter",
-    "describe": "Show descriptive information about declared parameters",
-    "dump": "Show all of the parameters of a node in a YAML file format",
-    "get": "Get parameter",
-    "list": "Output a list of available parameters",
-    "load": "Load parameter file for a node",
-    "set": "Set parameter",
-}
-_PKG = {
-    "create": "Create a new ROS 2 package",
-    "executables": "Output a list of package specific executables",
-    "list": "Output a list of available packages",
-    "prefix": "Output the prefix path of a package",
-    "xml": "Output the XML of the package manifest or a specific tag",
-}
-_TOPIC = {
-    "bw": "Display bandwidth used by topic",
-    "delay": "Display delay of topic from timestamp in header",
-    "echo": "Output messages from a topic",
-    "find": "Output a list of available topics of a given type",
-    "hz": "Print the average publishing rate to screen",
-    "info": "Print information about a topic",
-    "list": "Output a list of available topics",
-    "pub": "Publish a message to a topic",
-    "type": "Print a topic's type",
-}
+def _spec(command: table.Command) -> Spec:
+    verbs = None
+    if command.verbs is not None:
+        verbs = {name: Spec(v.doc, v.arguments) for name, v in command.verbs.items()}
+    own = command.own.arguments if command.own is not None else None
+    return Spec(command.doc, own, verbs, command.leading)
 
 
-def _prefixed(prefix: str, verbs: dict[str, str]) -> dict[str, Spec]:
-    return {
-        name: Spec(doc, getattr(verb_args, f"{prefix}_{name}", None))
-        for name, doc in verbs.items()
-    }
-
-
-COMMANDS: dict[str, Spec] = {
-    "action": Spec("Various action related sub-commands"),
-    "component": Spec("Various component related sub-commands"),
-    "daemon": Spec("Various daemon related sub-commands"),
-    "doctor": Spec("Check ROS setup and other potential issues"),
-    "extension_points": Spec("List extension points"),
-    "extensions": Spec("List extensions"),
-    "interface": Spec("Show information about ROS interfaces"),
-    "launch": Spec("Run a launch file"),
-    "lifecycle": Spec("Various lifecycle related sub-commands"),
-    "multicast": Spec("Various multicast related sub-commands"),
-    "node": Spec("Various node related sub-commands", verbs=_prefixed("node", _NODE)),
-    "param": Spec("Various param related sub-commands", verbs=_prefixed("param", _PARAM)),
-    "pkg": Spec("Various package related sub-commands", verbs=_prefixed("pkg", _PKG)),
-    "run": Spec("Run a package specific executable", verb_args.run),
-    "service": Spec("Various service related sub-commands"),
-    "topic": Spec(
-        "Various topic related sub-commands",
-        verbs=_prefixed("topic", _TOPIC),
-        leading=verb_args.topic_command,
-    ),
-    "wtf": Spec("Use `wtf` as alias to `doctor`"),
-}
-_HIDDEN = frozenset({"extension_points", "extensions"})
+COMMANDS: dict[str, Spec] = {name: _spec(c) for name, c in table.COMMANDS.items()}
 
 
 class _MutableString:
@@ -186,7 +152,6 @@ def _add_on_demand(
     dest: str,
     specs: dict[str, Spec],
     argv: list[str],
-    hidden: frozenset[str] = frozenset(),
 ) -> None:
     description = _MutableString()
     sub = parser.add_subparsers(
@@ -196,42 +161,31 @@ def _add_on_demand(
     )
     sub.dest = " " + dest.lstrip("_")
     sub.required = False
-    children = {
-        name: sub.add_parser(name, formatter_class=argparse.RawDescriptionHelpFormatter)
-        for name in sorted(specs)
-    }
+    children = {name: sub.add_parser(name) for name in sorted(specs)}
     known = _lenient_parse(root, [parser, *children.values()], argv)
     chosen = getattr(known, sub.dest)
     if chosen is None:
-        width = max(len(name) for name in specs if name not in hidden)
+        width = max(len(name) for name in specs)
         description.value = "".join(
-            f"{name.ljust(width)}  {specs[name].doc}\n"
-            for name in sorted(specs)
-            if name not in hidden
+            f"{name.ljust(width)}  {specs[name].doc}\n" for name in sorted(specs)
         )
         for name, child in children.items():
-            if name not in hidden:
-                child.set_defaults(**{dest: name})
+            child.set_defaults(**{dest: name})
         return
     spec, child = specs[chosen], children[chosen]
     root.chosen_parsers.append(child)  # type: ignore[attr-defined]
     child.set_defaults(**{dest: chosen})
     child.description = spec.doc
-    if spec.leading is not None:
-        spec.leading(child)
-    if spec.add_arguments is not None:
-        spec.add_arguments(child)
+    for builder in (spec.leading, spec.add_arguments):
+        if builder is not None:
+            table.resolve(builder)(child)
     if spec.verbs is not None:
         _add_on_demand(child, root, f"{cli_name} {chosen}", "_verb", spec.verbs, argv)
 
 
 def build_root() -> _Parser:
     """Return the top-level `ros2` parser (before any command is chosen)."""
-    root = _Parser(
-        prog="ros2",
-        description="ros2 is an extensible command-line tool for ROS 2.",
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+    root = _Parser(prog="ros2", description="ros2 is an extensible command-line tool for ROS 2.")
     root.add_argument(
         "--use-python-default-buffering",
         action="store_true",
@@ -253,7 +207,7 @@ def parse(argv: list[str]) -> tuple[argparse.Namespace | None, _Parser]:
     """
     root = build_root()
     root.chosen_parsers = []  # type: ignore[attr-defined]
-    _add_on_demand(root, root, "ros2", "_command", COMMANDS, argv, _HIDDEN)
+    _add_on_demand(root, root, "ros2", "_command", COMMANDS, argv)
     args = root.parse_args(args=argv)
     chosen = root.chosen_parsers  # type: ignore[attr-defined]
     return args, chosen[0] if chosen else root

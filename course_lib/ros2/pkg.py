@@ -11,7 +11,7 @@ from typing import Any
 
 from .. import ament
 from ..errors import PackageNotFoundError
-from .commands import Context
+from .context import Context
 
 __all__ = ["executable_paths", "pkg_executables", "pkg_prefix", "run"]
 

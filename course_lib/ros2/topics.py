@@ -8,8 +8,8 @@ import queue
 import time
 from typing import Any
 
-from .client import DISCOVERY_WAIT_S, wait_until
-from .commands import Context
+from .client import DISCOVERY_WAIT_S, YOUNG_CLIENT_S, wait_until
+from .context import Context
 from .msgyaml import message_to_yaml
 
 __all__ = ["topic_echo", "topic_hz"]
@@ -23,7 +23,7 @@ def _expand(topic: str) -> str:
     return expand_topic_name(topic, "ros2cli", "/")
 
 
-def _type_of(ctx: Context, topic: str) -> str | None:
+def _type_of(ctx: Context, topic: str, *, wait: bool = True) -> str | None:
     name = _expand(topic)
     found: list[str] = []
 
@@ -39,7 +39,7 @@ def _type_of(ctx: Context, topic: str) -> str | None:
                 return True
         return False
 
-    wait_until(look, DISCOVERY_WAIT_S)
+    wait_until(look, DISCOVERY_WAIT_S if wait else 0.0)
     return found[0] if found else None
 
 
@@ -50,7 +50,21 @@ def _import_message(type_name: str) -> Any:
     return getattr(importlib.import_module(f"{package}.{kind}"), name)
 
 
+_OVERRIDES = (
+    "qos_reliability",
+    "qos_durability",
+    "qos_depth",
+    "qos_history",
+    "qos_liveliness",
+    "qos_liveliness_lease_duration_seconds",
+)
+
+
 def _qos(ctx: Context, topic: str, args: argparse.Namespace) -> Any:
+    if any(getattr(args, name, None) is not None for name in _OVERRIDES):
+        from .topic_qos import qos_from_args
+
+        return qos_from_args(args)
     from rclpy.qos import (
         QoSDurabilityPolicy,
         QoSPresetProfiles,
@@ -120,8 +134,31 @@ def _format(msg: Any, args: argparse.Namespace) -> str:
     )
 
 
+def _filter(expr: str | None) -> Any:
+    """Return ros2topic's `--filter` predicate over `m` (the learner's own expression)."""
+    if not expr:
+        return None
+    code = compile(expr, "<filter>", "eval")
+    return lambda m: eval(code, {}, {"m": m})
+
+
+def _lost(ctx: Context) -> Any:
+    from rclpy.event_handler import SubscriptionEventCallbacks
+
+    def report(status: Any) -> None:
+        ctx.console.out(
+            "A message was lost!!!\n\ttotal count change:"
+            f"{status.total_count_change}\n\ttotal count: {status.total_count}---\n"
+        )
+
+    return SubscriptionEventCallbacks(message_lost=report)
+
+
 def topic_echo(args: argparse.Namespace, ctx: Context) -> Any:
-    """`ros2 topic echo <topic> [type] [--once] [--field F] [--timeout N]`."""
+    """`ros2 topic echo <topic> [type] [--once] [--field F] [--timeout N] [--filter E] [-i]`."""
+    if args.use_sim_time and args.timeout:
+        return "`ros2 topic echo --use-sim-time --timeout` is not part of this course."
+    keep = _filter(args.filter_expr)
     path = None
     if args.field is not None:
         path = [p for p in args.field.split(".") if p]
@@ -133,21 +170,38 @@ def topic_echo(args: argparse.Namespace, ctx: Context) -> Any:
     topic = _expand(args.topic_name)
     inbox: queue.Queue[Any] = queue.Queue()
     node = ctx.client.node
-    sub = node.create_subscription(msg_class, topic, inbox.put, _qos(ctx, topic, args))
+    events = None if args.no_lost_messages else _lost(ctx)
+    sub = node.create_subscription(
+        msg_class,
+        topic,
+        lambda msg, info: inbox.put((msg, info)),
+        _qos(ctx, topic, args),
+        event_callbacks=events,
+    )
     deadline = time.monotonic() + args.timeout if args.timeout else math.inf
     try:
         while not ctx.console.cancelled.is_set() and time.monotonic() < deadline:
             try:
-                msg = inbox.get(timeout=min(_TICK_S, max(0.0, deadline - time.monotonic())))
+                msg, info = inbox.get(timeout=min(_TICK_S, max(0.0, deadline - time.monotonic())))
             except queue.Empty:
                 continue
             shown = _field(msg, path) if path else msg
+            if keep is not None and not keep(shown):
+                continue
+            if args.include_message_info:
+                ctx.console.out(_info_text(info))
             ctx.console.out(_format(shown, args))
             if args.once:
                 break
     finally:
         node.destroy_subscription(sub)
-    return 0
+    return 2 if ctx.console.cancelled.is_set() else 0  # Ctrl-C: ros2cli's exit code
+
+
+def _info_text(info: Any) -> str:
+    import yaml
+
+    return yaml.dump(dict(info)) + "---\n"
 
 
 def _hz_line(times: list[float]) -> str:
@@ -162,23 +216,34 @@ def _hz_line(times: list[float]) -> str:
 
 
 def topic_hz(args: argparse.Namespace, ctx: Context) -> Any:
-    """`ros2 topic hz <topic> [--window N]`: prints the rate about once a second."""
+    """`ros2 topic hz <topic> [--window N] [--filter E] [--wall-time]`: rate each second.
+
+    The course's client node runs on wall time, so the rate is wall time with or without
+    `--wall-time` (as the real tool's without simulated time).
+    """
     from rclpy.qos import qos_profile_sensor_data
 
-    type_name = _type_of(ctx, args.topic_name)
-    while type_name is None:
+    if args.use_sim_time:
+        return "`ros2 topic hz --use-sim-time` is not part of this course: it measures wall time."
+    keep = _filter(args.filter_expr)
+    # hz keeps waiting for a missing topic, so it warns at once (as ros2topic's blocking
+    # get_msg_class); only a young client first gives discovery its time.
+    young = max(0.0, YOUNG_CLIENT_S - ctx.client.age())
+    type_name = _type_of(ctx, args.topic_name, wait=young > 0)
+    if type_name is None:
         ctx.console.out(
             f"WARNING: topic [{args.topic_name}] does not appear to be published yet\n"
         )
-        if ctx.console.cancelled.wait(1.0):
-            return 0
-        type_name = _type_of(ctx, args.topic_name)
+    while type_name is None:
+        if ctx.console.cancelled.wait(_TICK_S):
+            return 2
+        type_name = _type_of(ctx, args.topic_name, wait=False)
     stamps: queue.Queue[float] = queue.Queue()
     node = ctx.client.node
     sub = node.create_subscription(
         _import_message(type_name),
         _expand(args.topic_name),
-        lambda _m: stamps.put(time.monotonic()),
+        lambda m: (keep is None or keep(m)) and stamps.put(time.monotonic()),
         qos_profile_sensor_data,
     )
     deltas: list[float] = []
@@ -196,4 +261,4 @@ def topic_hz(args: argparse.Namespace, ctx: Context) -> Any:
                 printed = last
     finally:
         node.destroy_subscription(sub)
-    return 0
+    return 2 if ctx.console.cancelled.is_set() else 0  # Ctrl-C: ros2cli's exit code

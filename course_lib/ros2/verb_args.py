@@ -230,13 +230,12 @@ def _positive_int(text: str) -> int:
     return value
 
 
-def _qos(parser: Parser) -> None:
-    verb = "subscribe"
+def _qos(parser: Parser, verb: str = "subscribe", default: str = "sensor_data") -> None:
     parser.add_argument(
         "--qos-profile",
         choices=_QOS["profile"],
-        default="sensor_data",
-        help=f"Quality of service preset profile to {verb} with (default: sensor_data)",
+        default=default,
+        help=f"Quality of service preset profile to {verb} with (default: {default})",
     )
     parser.add_argument(
         "--qos-depth",
@@ -407,3 +406,22 @@ def run(parser: Parser) -> None:
     parser.add_argument(
         "argv", nargs=argparse.REMAINDER, help="Pass arbitrary arguments to the executable"
     )
+
+
+def strategy(parser: Parser) -> None:
+    """Add ros2cli's node-strategy options (`--spin-time`, `-s`, `--no-daemon`)."""
+    _strategy(parser)
+
+
+def qos(parser: Parser, verb: str, default: str) -> None:
+    """Add ros2topic's QoS options (`--qos-profile`, `--qos-depth`, ...)."""
+    _qos(parser, verb, default)
+
+
+def direct(parser: Parser) -> None:
+    """Add ros2cli's direct-node options (`--spin-time`, `-s`)."""
+    _direct(parser)
+
+
+positive_float = _positive_float
+positive_int = _positive_int

@@ -6,7 +6,7 @@ import argparse
 from typing import Any
 
 from . import render
-from .commands import Context
+from .context import Context
 from .paramfile import ParamFileError, read_param_file
 from .results import ParamListing, node_name_of
 from .values import NOT_SET, ParamValue, parse_value

@@ -1,0 +1,38 @@
+"""QoS profiles from ros2topic's `--qos-*` options (imports rclpy when called)."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+__all__ = ["qos_from_args"]
+
+
+def qos_from_args(args: argparse.Namespace) -> Any:
+    """Return the preset `--qos-profile` with the other `--qos-*` options applied."""
+    from rclpy.duration import Duration
+    from rclpy.qos import (
+        QoSDurabilityPolicy,
+        QoSHistoryPolicy,
+        QoSLivelinessPolicy,
+        QoSPresetProfiles,
+        QoSReliabilityPolicy,
+    )
+
+    profile = QoSPresetProfiles.get_from_short_key(args.qos_profile)
+    if args.qos_history:
+        profile.history = QoSHistoryPolicy.get_from_short_key(args.qos_history)
+    if args.qos_durability:
+        profile.durability = QoSDurabilityPolicy.get_from_short_key(args.qos_durability)
+    if args.qos_reliability:
+        profile.reliability = QoSReliabilityPolicy.get_from_short_key(args.qos_reliability)
+    if args.qos_liveliness:
+        profile.liveliness = QoSLivelinessPolicy.get_from_short_key(args.qos_liveliness)
+    lease = args.qos_liveliness_lease_duration_seconds
+    if lease and lease >= 0:
+        profile.liveliness_lease_duration = Duration(seconds=lease)
+    if args.qos_depth and args.qos_depth >= 0:
+        profile.depth = args.qos_depth
+    elif profile.durability == QoSDurabilityPolicy.TRANSIENT_LOCAL and profile.depth == 0:
+        profile.depth = 1
+    return profile
