@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import os
 import textwrap
 from pathlib import Path
@@ -77,20 +76,3 @@ def test_cell_magic_runs_each_line(kernel) -> None:  # type: ignore[no-untyped-d
         "Double value is: 0.2\n",
         "Set parameter successful\n",
     ]
-
-
-def test_magic_round_trip_is_fast(kernel) -> None:  # type: ignore[no-untyped-def]
-    code = textwrap.dedent("""
-        import json, statistics, time
-        from course_lib.ros2.magics import run_line
-        def _median(line, n=30):
-            times = []
-            for _ in range(n):
-                t = time.perf_counter(); run_line(line); times.append(time.perf_counter() - t)
-            return statistics.median(times)
-        print(json.dumps({"get": _median("param get /param_vel_node velocity"),
-                          "set": _median("param set /param_vel_node velocity 0.0")}))
-    """)
-    (out,) = [o for o in _execute(kernel, code) if o["type"] == "stream"]
-    figures = json.loads(out["text"])
-    assert figures["get"] < 0.010 and figures["set"] < 0.010, figures
