@@ -9,7 +9,9 @@ import meshcat
 import mujoco
 import zmq
 
+from ..sim.frames import robot_frames
 from .scene import body_paths, body_transform, camera_commands, moving_bodies, scene_commands
+from .tf_frames import TfView
 
 __all__ = ["LiveView"]
 
@@ -17,7 +19,7 @@ _TIMEOUT_MS = 2000
 
 
 class LiveView:
-    """Draw the model once, then send one transform per moving body on `update`."""
+    """Draw the model and its TF frames once, then send the moving transforms on `update`."""
 
     def __init__(self, zmq_url: str, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         with contextlib.redirect_stdout(io.StringIO()):  # meshcat prints in its constructor
@@ -30,8 +32,15 @@ class LiveView:
         self._moving = moving_bodies(model)
         self.updates = 0
         self.failed = False
+        self.frames = TfView(model, robot_frames(model))
         self.visualizer["mujoco"].delete()
-        for command in [*scene_commands(model, data), *camera_commands()]:
+        self.visualizer["tf"].delete()
+        for command in [
+            *scene_commands(model, data),
+            *self.frames.draw_commands(),
+            *self.frames.update_commands(data),
+            *camera_commands(),
+        ]:
             self.visualizer.window.send(command)
 
     def update(self, data: mujoco.MjData) -> bool:
@@ -44,6 +53,8 @@ class LiveView:
                 window.send(
                     meshcat.commands.SetTransform(body_transform(data, body), self._paths[body])
                 )
+            for command in self.frames.update_commands(data):
+                window.send(command)
         except zmq.ZMQError:
             self.failed = True
             return False
