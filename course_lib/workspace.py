@@ -35,6 +35,8 @@ def build_env(base: Mapping[str, str] | None = None) -> dict[str, str]:
     for variable in ("AMENT_PREFIX_PATH", "CMAKE_PREFIX_PATH"):
         env[variable] = _prepend(prefix, env.get(variable))
     env["PATH"] = _prepend(str(venv_bin_dir()), env.get("PATH"))  # the pinned cmake
+    # colcon's default adds `-l<cores>`, which compiles one file at a time on a busy machine.
+    env.setdefault("MAKEFLAGS", f"-j{os.cpu_count() or 1}")
     return env
 
 
