@@ -15,11 +15,12 @@ import sysconfig
 from collections.abc import Mapping
 from pathlib import Path
 
-from .paths import PACKAGE_DIR, ROSJECT_DIR, venv_bin_dir
+from .paths import PACKAGE_DIR, REPO_ROOT, ROSJECT_DIR, venv_bin_dir
 
 __all__ = ["BUILD_STAMP", "build_env", "build_workspace", "cmake_args"]
 
 BUILD_STAMP = ROSJECT_DIR / "install" / ".built"
+CHECK_PLATFORM = REPO_ROOT / "scripts" / "check_platform.py"  # also names a missing compiler
 WHEEL_FIXUPS = PACKAGE_DIR / "cmake" / "wheel_fixups.cmake"
 
 
@@ -62,6 +63,9 @@ def cmake_args() -> list[str]:
 
 def build_workspace(*, quiet: bool = True, workspace: Path = ROSJECT_DIR) -> int:
     """Run `colcon build` in `workspace` (rosject/); return its exit code."""
+    checked = subprocess.run([sys.executable, str(CHECK_PLATFORM)], check=False)
+    if checked.returncode != 0:  # it said, in one sentence, what to install
+        return checked.returncode
     argv = [
         str(venv_bin_dir() / "colcon"),
         "build",

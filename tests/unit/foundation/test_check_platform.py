@@ -82,3 +82,29 @@ def test_missing_python_headers_name_the_dev_package(
     monkeypatch.setattr(module.sysconfig, "get_paths", lambda: {"include": str(tmp_path)})
     assert module.main() == 1
     assert "python3." in capsys.readouterr().err.split("install ")[-1]
+
+
+def test_workspace_build_stops_with_the_same_sentence_without_a_compiler(
+    tmp_path: Path,
+) -> None:
+    import os
+    import subprocess
+    import sys
+
+    # A PATH holding only python: no c++, no make.
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    (bin_dir / "python").symlink_to(sys.executable)
+    done = subprocess.run(
+        [str(bin_dir / "python"), "-m", "course_lib", "build", "--workspace", str(tmp_path)],
+        cwd=SCRIPT.parents[1],
+        env={**os.environ, "PATH": str(bin_dir)},
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    assert done.returncode == 1
+    assert done.stderr.startswith("The course builds the tf2_msgs messages")
+    assert "sudo apt-get install g++ make" in done.stderr
+    assert not (tmp_path / "build").exists()  # nothing was built
