@@ -85,9 +85,13 @@ def quat_multiply(
 
 
 def _fixed(
-    name: str, parent: str, child: str, xyz: np.ndarray, quat: object = _IDENTITY
+    name: str,
+    parent: str,
+    child: str,
+    xyz: np.ndarray,
+    quat: np.ndarray | tuple[float, ...] = _IDENTITY,
 ) -> FrameJoint:
-    return FrameJoint(name, parent, child, Transform(_vec(xyz), _quat(quat)))  # type: ignore[arg-type]
+    return FrameJoint(name, parent, child, Transform(_vec(xyz), _quat(quat)))
 
 
 def robot_frames(model: mujoco.MjModel) -> list[FrameJoint]:
