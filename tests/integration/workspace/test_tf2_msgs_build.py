@@ -19,7 +19,6 @@ from course_lib.paths import REPO_ROOT, ROSJECT_DIR
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 JAZZY_TF_MESSAGE_HASH = "RIHS01_e369d0f05a23ae52508854b66f6aa0437f3449d652e8cbf22d5abe85d020f087"
-BUILD_BUDGET_S = 120.0  # the target is 30 s on 2 idle cores (bench); this only catches a hang
 PUBLISH_AND_HASH = """
 import rclpy
 from rclpy.serialization import deserialize_message, serialize_message
@@ -64,8 +63,7 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Path, floa
 
 
 def test_tf2_msgs_builds_from_scratch(built: tuple[Path, float]) -> None:
-    install, seconds = built
-    assert seconds < BUILD_BUDGET_S
+    install, _seconds = built  # the time is bench/workspace_build.py's to report
     assert (install / ".built").is_file()
     marker = install / "share/ament_index/resource_index/packages/tf2_msgs"
     assert marker.is_file()
