@@ -16,6 +16,7 @@ __all__ = [
     "package_executables",
     "package_prefix",
     "package_share_directory",
+    "use_workspace_interfaces",
     "workspace_env",
 ]
 
@@ -124,3 +125,35 @@ def workspace_env(base: Mapping[str, str] | None = None) -> dict[str, str]:
     _overlay(env, install)
     env["PATH"] = _prepend(str(Path(sys.executable).parent), env.get("PATH"))
     return env
+
+
+def use_workspace_interfaces() -> None:
+    """Let this process use the interfaces built in the workspace (tf2_msgs), as if sourced.
+
+    Appends the workspace's Python folders to sys.path and its library folders to
+    LD_LIBRARY_PATH (for child processes). This process read LD_LIBRARY_PATH when it started,
+    so the type support libraries that ROS loads by name are loaded here once by path.
+    """
+    overlay = workspace_env({})
+    for entry in overlay.get("PYTHONPATH", "").split(os.pathsep):
+        if entry and entry not in sys.path:
+            sys.path.append(entry)
+    libraries = [p for p in overlay.get("LD_LIBRARY_PATH", "").split(os.pathsep) if p]
+    existing = os.environ.get("LD_LIBRARY_PATH", "").split(os.pathsep)
+    missing = [p for p in libraries if p not in existing]
+    if missing:
+        os.environ["LD_LIBRARY_PATH"] = os.pathsep.join([*missing, *filter(None, existing)])
+    for folder in libraries:
+        for library in sorted(Path(folder).glob("lib*__rosidl_typesupport_*.so")):
+            _preload(library)
+
+
+def _preload(library: Path) -> None:
+    import ctypes
+
+    if library not in _preloaded:
+        ctypes.CDLL(str(library), mode=ctypes.RTLD_GLOBAL)
+        _preloaded.add(library)
+
+
+_preloaded: set[Path] = set()

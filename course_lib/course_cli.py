@@ -8,10 +8,17 @@ import sys
 __all__ = ["main"]
 
 
-def _build(_args: argparse.Namespace) -> int:
+def _build(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
     from .workspace import build_workspace
 
-    return build_workspace()
+    parser = argparse.ArgumentParser(prog="python -m course_lib build")
+    parser.add_argument("--workspace", type=Path, help="a colcon workspace (default: rosject/)")
+    options = parser.parse_args(args.extra)
+    if options.workspace is None:
+        return build_workspace()
+    return build_workspace(workspace=options.workspace.resolve())
 
 
 def _lab(args: argparse.Namespace) -> int:

@@ -65,6 +65,7 @@ class Session:
         os.environ.update({k: self.env[k] for k in overlay if k in self.env})
         os.environ[DOMAIN_ENV] = os.environ[SESSION_DOMAIN_ENV] = str(self.domain_id)
         os.environ.pop("ROS_LOCALHOST_ONLY", None)
+        ament.use_workspace_interfaces()  # messages built in rosject/, such as tf2_msgs
         self._children: list[ChildProcess] = []
         self._lock = threading.Lock()
         self._closed = False

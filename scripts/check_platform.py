@@ -1,9 +1,28 @@
-"""Stop early, in one sentence, on a machine the ROS 2 Jazzy wheels do not cover."""
+"""Stop early, in one sentence, on a machine the ROS 2 Jazzy wheels do not cover.
+
+Also before anything is built: the course builds `tf2_msgs` (the message of /tf) from the
+ROS 2 build wheels, which needs a C/C++ compiler, `make` and the Python headers.
+"""
 
 import platform
+import shutil
 import sys
+import sysconfig
+from pathlib import Path
 
 SUPPORTED = "Linux x86_64 with CPython 3.10, 3.11 or 3.12 (what the ROS 2 Jazzy wheels cover)"
+
+
+def missing_build_tools() -> list[str]:
+    """Return the Debian packages to install for the workspace build (empty: all there)."""
+    need = []
+    if not (shutil.which("c++") or shutil.which("g++")) or not shutil.which("cc"):
+        need.append("g++")
+    if not shutil.which("make"):
+        need.append("make")
+    if not (Path(sysconfig.get_paths()["include"]) / "Python.h").is_file():
+        need.append("python{}.{}-dev".format(*sys.version_info[:2]))
+    return need
 
 
 def main() -> int:
@@ -20,6 +39,14 @@ def main() -> int:
         print(
             f"The course runs on {SUPPORTED}, but {' and '.join(problems)}.\n"
             "Try: make lab PYTHON=python3.11 (any CPython 3.10-3.12 on Linux x86_64).",
+            file=sys.stderr,
+        )
+        return 1
+    need = missing_build_tools()
+    if need:
+        print(
+            "The course builds the tf2_msgs messages with a C/C++ compiler, make and the Python "
+            f"headers; install them first: sudo apt-get install {' '.join(need)}",
             file=sys.stderr,
         )
         return 1

@@ -12,15 +12,18 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
-from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
+from rclpy.qos_overriding_options import QoSOverridingOptions
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan
 from std_msgs.msg import String, UInt32
 
+from .frames import robot_frames
 from .messages import Frames, MessageFactory
 from .nodes import create_nodes, node_specs
 from .pacing import Pacer, Schedule
 from .physics import Simulation
+from .tf import TfFactory, TFMessage
 from .urdf import robot_urdf
 
 __all__ = ["RESET_DONE_TOPIC", "RESET_TOPIC", "Bridge"]
@@ -33,6 +36,16 @@ _LATCHED = QoSProfile(
     depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL, reliability=ReliabilityPolicy.RELIABLE
 )
 _SENSOR_QOS = QoSProfile(depth=5, reliability=ReliabilityPolicy.BEST_EFFORT)
+# tf2_ros's broadcasters: /tf keeps 100, /tf_static is latched; both accept qos_overrides.
+_TF_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE)
+_OVERRIDABLE = QoSOverridingOptions(
+    [
+        QoSPolicyKind.DEPTH,
+        QoSPolicyKind.DURABILITY,
+        QoSPolicyKind.HISTORY,
+        QoSPolicyKind.RELIABILITY,
+    ]
+)
 
 
 class Bridge:
@@ -45,12 +58,15 @@ class Bridge:
         self.urdf = robot_urdf(sim.model)
         self.nodes = create_nodes(context, node_specs(settings, sim.drive, self.urdf))
         self.messages = factory = MessageFactory(sim, Frames())
+        self.tf = TfFactory(sim, robot_frames(sim.model))
         self._builders = {
             "clock": factory.clock,
             "odom": factory.odometry,
             "imu": factory.imu,
             "joint_states": factory.joint_states,
             "scan": factory.scan,
+            "tf_odom": lambda: self.tf.odom(factory.stamp),
+            "tf_wheels": lambda: self.tf.wheels(factory.stamp),
         }
         self.pacer = Pacer(settings.real_time_factor)
         self.paused = False
@@ -68,13 +84,23 @@ class Bridge:
     def _publishers(self) -> None:
         n = self.nodes
         self.pub = {
-            "clock": n["mujoco"].create_publisher(Clock, "/clock", 10),
+            "clock": n["mujoco"].create_publisher(
+                Clock, "/clock", 10, qos_overriding_options=_OVERRIDABLE
+            ),
             "odom": n["turtlebot3_diff_drive"].create_publisher(Odometry, "/odom", 10),
             "joint_states": n["turtlebot3_joint_state"].create_publisher(
                 JointState, "/joint_states", 10
             ),
             "imu": n["turtlebot3_imu"].create_publisher(Imu, "/imu", 10),
             "scan": n["turtlebot3_laserscan"].create_publisher(LaserScan, "/scan", _SENSOR_QOS),
+            # odom -> base_footprint comes from the drive (Gazebo's publish_odom_tf), the
+            # wheels from robot_state_publisher: two publishers on /tf, as in the tutorial.
+            "tf_odom": n["turtlebot3_diff_drive"].create_publisher(
+                TFMessage, "/tf", _TF_QOS, qos_overriding_options=_OVERRIDABLE
+            ),
+            "tf_wheels": n["robot_state_publisher"].create_publisher(
+                TFMessage, "/tf", _TF_QOS, qos_overriding_options=_OVERRIDABLE
+            ),
         }
         self.camera = None
         if "camera_driver" in n:
@@ -92,7 +118,10 @@ class Bridge:
                 n["camera_driver"].get_logger(),
             )
         self._description = n["robot_state_publisher"].create_publisher(
-            String, "/robot_description", _LATCHED
+            String, "/robot_description", _LATCHED, qos_overriding_options=_OVERRIDABLE
+        )
+        self._tf_static = n["robot_state_publisher"].create_publisher(
+            TFMessage, "/tf_static", _LATCHED, qos_overriding_options=_OVERRIDABLE
         )
         n["turtlebot3_diff_drive"].create_subscription(Twist, "/cmd_vel", self._on_cmd_vel, 10)
         n["mujoco"].create_subscription(UInt32, RESET_TOPIC, self._on_reset, 10)
@@ -144,7 +173,7 @@ class Bridge:
             else:
                 self.sim.reset()
                 self.pacer.restart()
-                self._publish(["odom", "joint_states"])
+                self._publish(["odom", "joint_states", "tf_odom", "tf_wheels"])
                 self._reset_done.publish(UInt32(data=value))
 
     def run(self, *, ready: Any = None, max_sim_time_s: float | None = None) -> None:
@@ -155,6 +184,8 @@ class Bridge:
                 "clock": rates.clock_hz,
                 "odom": rates.odom_hz,
                 "joint_states": rates.joint_states_hz,
+                "tf_odom": rates.odom_hz,
+                "tf_wheels": rates.joint_states_hz,
                 "imu": rates.imu_hz,
                 "scan": rates.scan_hz,
                 "camera": rates.camera_hz,
@@ -163,6 +194,7 @@ class Bridge:
             self.sim.time,
         )
         self._description.publish(String(data=self.urdf))
+        self._tf_static.publish(self.tf.static(self.messages.stamp))
         self._spin_thread.start()
         self._publish(schedule.advance(0))
         view_period = 1.0 / rates.viewer_hz

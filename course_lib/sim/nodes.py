@@ -1,9 +1,10 @@
 """The simulation's ROS nodes, named and parameterised like the tutorial's Gazebo world.
 
 `ros2 param list` shows /mujoco (in place of /gazebo), /turtlebot3_diff_drive,
-/turtlebot3_joint_state, /turtlebot3_imu, /turtlebot3_laserscan and /robot_state_publisher.
-Geometry and frames are read-only (they describe the model); /mujoco's `paused` and
-`real_time_factor` may be set while the world runs.
+/turtlebot3_joint_state, /turtlebot3_imu, /turtlebot3_laserscan and /robot_state_publisher,
+each with the `qos_overrides.*` entries of its /parameter_events publisher (and /clock
+subscription) as rclcpp nodes show them. Geometry and frames are read-only (they describe the
+model); /mujoco's `paused` and `real_time_factor` may be set while the world runs.
 """
 
 from __future__ import annotations
@@ -19,10 +20,9 @@ from rclpy.parameter import Parameter
 from ..config.simulation import SimulationSettings
 from .kinematics import DiffDrive
 from .model import WHEEL_JOINTS
+from .qos_parameters import declare_qos_parameters
 
 __all__ = ["NodeSpec", "create_nodes", "node_specs"]
-
-NO_TF = "always false here: /tf needs tf2_msgs, which has no Python wheel"
 
 
 @dataclass(frozen=True)
@@ -65,7 +65,7 @@ def node_specs(settings: SimulationSettings, drive: DiffDrive, urdf: str) -> lis
                 "robot_base_frame": ("base_footprint", "child_frame_id of /odom"),
                 "odometry_source": ("world", "odometry is MuJoCo's ground truth"),
                 "publish_odom": (True, "publish /odom"),
-                "publish_odom_tf": (False, NO_TF),
+                "publish_odom_tf": (True, "publish odom -> base_footprint on /tf"),
             },
         ),
         NodeSpec(
@@ -105,8 +105,13 @@ def node_specs(settings: SimulationSettings, drive: DiffDrive, urdf: str) -> lis
             {
                 "robot_description": (urdf, "URDF of the robot, also on /robot_description"),
                 "publish_frequency": (
-                    rates.odom_hz,
-                    "Hz (/tf is not published here: no tf2_msgs)",
+                    rates.joint_states_hz,
+                    "Hz of the wheels' transforms on /tf (one per /joint_states message)",
+                ),
+                "use_tf_static": (True, "fixed frames go on /tf_static (transient local), once"),
+                "ignore_timestamp": (
+                    False,
+                    "false: only joint states newer than the last ones move the wheels' frames",
                 ),
                 "frame_prefix": ("", "prefix for frame ids"),
             },
@@ -170,6 +175,8 @@ def create_nodes(context: Context, specs: list[NodeSpec]) -> dict[str, Node]:
         )
         for name, (value, description) in spec.parameters.items():
             node.declare_parameter(name, value, _descriptor(name, description, spec))
+        declare_qos_parameters(node, "/parameter_events", "publisher")
+        declare_qos_parameters(node, "/clock", "subscription")
         _drop_own_clock_subscription(node)
         nodes[spec.name] = node
     return nodes

@@ -8,7 +8,7 @@ from xml.sax.saxutils import quoteattr
 import mujoco
 import numpy as np
 
-from .model import BASE_BODY, BASE_HEIGHT_M
+from .frames import FrameJoint, robot_frames
 
 __all__ = ["robot_urdf"]
 
@@ -50,41 +50,28 @@ def _link(model: mujoco.MjModel, body: int, name: str) -> list[str]:
     return lines
 
 
+def _joint(joint: FrameJoint) -> str:
+    kind = "fixed" if joint.fixed else "continuous"
+    axis = "" if joint.axis is None else '<axis xyz="{:g} {:g} {:g}"/>'.format(*joint.axis)
+    origin = _origin(np.array(joint.origin.xyz), np.array(joint.origin.quat))
+    return (
+        f"  <joint name={quoteattr(joint.name)} type={quoteattr(kind)}>"
+        f"<parent link={quoteattr(joint.parent)}/><child link={quoteattr(joint.child)}/>"
+        f"{origin}{axis}</joint>"
+    )
+
+
 def robot_urdf(model: mujoco.MjModel, name: str = "turtlebot3_waffle_pi") -> str:
     """Return a URDF with the robot's links, joints, sensor frames and visual shapes."""
-    base = model.body(BASE_BODY).id
-    lines = [
-        '<?xml version="1.0"?>',
-        f"<robot name={quoteattr(name)}>",
-        '  <link name="base_footprint"/>',
-    ]
-    lines += _link(model, base, "base_link")
-    lines.append(
-        '  <joint name="base_joint" type="fixed"><parent link="base_footprint"/>'
-        f'<child link="base_link"/><origin xyz="0 0 {BASE_HEIGHT_M}"/></joint>'
-    )
-    for body in range(model.nbody):
-        if model.body_parentid[body] != base or body == base:
-            continue
-        child = model.body(body).name
-        joint = model.body_jntadr[body]
-        kind = "continuous" if joint >= 0 else "fixed"
-        jname = model.joint(joint).name if joint >= 0 else f"{child}_joint"
-        axis = " ".join(f"{float(v):g}" for v in model.jnt_axis[joint]) if joint >= 0 else "0 0 1"
-        lines += _link(model, body, child)
-        lines.append(
-            f"  <joint name={quoteattr(jname)} type={quoteattr(kind)}>"
-            f'<parent link="base_link"/><child link={quoteattr(child)}/>'
-            f"{_origin(model.body_pos[body], model.body_quat[body])}"
-            f'<axis xyz="{axis}"/></joint>'
-        )
-    for site in ("base_scan", "imu_link"):
-        sid = model.site(site).id
-        lines.append(f'  <link name="{site}"/>')
-        lines.append(
-            f'  <joint name="{site}_joint" type="fixed"><parent link="base_link"/>'
-            f'<child link="{site}"/>{_origin(model.site_pos[sid], model.site_quat[sid])}'
-            "</joint>"
-        )
+    frames = robot_frames(model)
+    lines = ['<?xml version="1.0"?>', f"<robot name={quoteattr(name)}>"]
+    lines.append(f"  <link name={quoteattr(frames[0].parent)}/>")
+    for joint in frames:
+        body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, joint.child)
+        if body >= 0:
+            lines += _link(model, body, joint.child)
+        else:
+            lines.append(f"  <link name={quoteattr(joint.child)}/>")
+        lines.append(_joint(joint))
     lines.append("</robot>")
     return "\n".join(lines) + "\n"

@@ -10,7 +10,9 @@ import meshcat
 import mujoco
 import zmq
 
+from ..sim.frames import robot_frames
 from .scene import body_paths, body_transform, camera_commands, moving_bodies, scene_commands
+from .tf_frames import TfView
 
 __all__ = ["LiveView"]
 
@@ -18,7 +20,7 @@ _TIMEOUT_MS = 2000
 
 
 class LiveView:
-    """Draw the model once, then send one transform per moving body on `update`."""
+    """Draw the model and its TF frames once, then send the moving transforms on `update`."""
 
     def __init__(self, zmq_url: str, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         self.zmq_url = zmq_url
@@ -29,8 +31,15 @@ class LiveView:
         self.failed = False
         self._misses = 0
         self._retry_at = 0.0
+        self.frames = TfView(model, robot_frames(model))
         self.visualizer["mujoco"].delete()
-        for command in [*scene_commands(model, data), *camera_commands()]:
+        self.visualizer["tf"].delete()
+        for command in [
+            *scene_commands(model, data),
+            *self.frames.draw_commands(),
+            *self.frames.update_commands(data),
+            *camera_commands(),
+        ]:
             self.visualizer.window.send(command)
 
     def _connect(self) -> meshcat.Visualizer:
@@ -56,6 +65,8 @@ class LiveView:
                 window.send(
                     meshcat.commands.SetTransform(body_transform(data, body), self._paths[body])
                 )
+            for command in self.frames.update_commands(data):
+                window.send(command)
         except zmq.ZMQError:
             self.failed = True
             self._misses += 1  # back off, so a server that is gone stalls the physics rarely

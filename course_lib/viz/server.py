@@ -30,11 +30,24 @@ __all__ = ["LocalBridge", "main"]
 
 _PAGE = """<!DOCTYPE html>
 <html><head><meta charset=utf-8><title>MeshCat</title>
-<style>body {margin: 0} #meshcat-pane {width: 100vw; height: 100vh; overflow: hidden}</style>
+<style>body {margin: 0} #meshcat-pane {width: 100vw; height: 100vh; overflow: hidden}
+#tf-toggle {position: absolute; left: 8px; top: 8px; padding: 2px 6px; border-radius: 4px;
+  font: 13px sans-serif; color: #fff; background: rgba(0, 0, 0, 0.55); user-select: none}</style>
 </head><body><div id="meshcat-pane"></div>
+<label id="tf-toggle" title="the frames /tf and /tf_static describe (x red, y green, z blue)">
+<input type="checkbox" id="tf-frames"> TF frames</label>
 <script src="main.min.js"></script>
 <script>
 var viewer = new MeshCat.Viewer(document.getElementById("meshcat-pane"));
+// The simulation draws its TF frames under /meshcat/tf, hidden; this box shows them.
+// Drawn on top of the robot's shapes (no depth test): most frames sit inside the chassis.
+document.getElementById("tf-frames").addEventListener("change", function (event) {
+  var frames = viewer.scene_tree.find(["meshcat", "tf"]);
+  frames.object.traverse(function (part) {
+    if (part.material) { part.material.depthTest = false; part.renderOrder = 1; }
+  });
+  viewer.set_property(["meshcat", "tf"], "visible", event.target.checked);
+});
 // The websocket lives at the page's own prefix: "/" directly, "/proxy/<port>/" behind Jupyter.
 var base = location.href.split(/[?#]/)[0].replace(/static\\/(index\\.html)?$/, "");
 viewer.connect(base.replace(/^http/, "ws"));

@@ -48,3 +48,63 @@ def test_unsupported_platforms_get_one_clear_sentence(
     assert err.startswith("The course runs on Linux x86_64 with CPython 3.10, 3.11 or 3.12")
     assert says in err
     assert "Try: make lab PYTHON=python3.11" in err
+
+
+@pytest.mark.parametrize(
+    ("absent", "says"),
+    [
+        ({"g++", "c++"}, "sudo apt-get install g++"),
+        ({"make"}, "sudo apt-get install make"),
+        ({"g++", "c++", "cc", "make"}, "sudo apt-get install g++ make"),
+    ],
+)
+def test_missing_compiler_gets_one_sentence_before_any_build(
+    monkeypatch: pytest.MonkeyPatch,
+    capsys: pytest.CaptureFixture[str],
+    absent: set[str],
+    says: str,
+) -> None:
+    module = _load()
+    which = module.shutil.which
+    monkeypatch.setattr(
+        module.shutil, "which", lambda name: None if name in absent else which(name)
+    )
+    assert module.main() == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("The course builds the tf2_msgs messages")
+    assert err.rstrip().endswith(says)
+
+
+def test_missing_python_headers_name_the_dev_package(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    module = _load()
+    monkeypatch.setattr(module.sysconfig, "get_paths", lambda: {"include": str(tmp_path)})
+    assert module.main() == 1
+    assert "python3." in capsys.readouterr().err.split("install ")[-1]
+
+
+def test_workspace_build_stops_with_the_same_sentence_without_a_compiler(
+    tmp_path: Path,
+) -> None:
+    import os
+    import subprocess
+    import sys
+
+    # A PATH holding only python: no c++, no make.
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    (bin_dir / "python").symlink_to(sys.executable)
+    done = subprocess.run(
+        [str(bin_dir / "python"), "-m", "course_lib", "build", "--workspace", str(tmp_path)],
+        cwd=SCRIPT.parents[1],
+        env={**os.environ, "PATH": str(bin_dir)},
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    assert done.returncode == 1
+    assert done.stderr.startswith("The course builds the tf2_msgs messages")
+    assert "sudo apt-get install g++ make" in done.stderr
+    assert not (tmp_path / "build").exists()  # nothing was built

@@ -1,4 +1,4 @@
-"""The ROS packages in rosject/ follow the ament_python layout that colcon expects."""
+"""The ROS packages in rosject/ follow the layouts colcon expects (ament_python, interfaces)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,15 @@ import yaml
 
 from course_lib.paths import ROSJECT_DIR
 
-PACKAGES = sorted(p.parent for p in ROSJECT_DIR.glob("*/package.xml"))
+ALL_PACKAGES = sorted(p.parent for p in ROSJECT_DIR.glob("*/package.xml"))
+
+
+def _build_type(package: Path) -> str | None:
+    return ET.parse(package / "package.xml").getroot().findtext("export/build_type")
+
+
+PACKAGES = [p for p in ALL_PACKAGES if _build_type(p) == "ament_python"]
+INTERFACE_PACKAGES = [p for p in ALL_PACKAGES if _build_type(p) == "ament_cmake"]
 
 
 def _setup_call(package: Path) -> ast.Call:
@@ -82,3 +90,25 @@ def test_tutorial_node_matches_the_tutorial() -> None:
     assert "# self.add_on_set_parameters_callback(" in source
     setup_py = (ROSJECT_DIR / "parameter_tests/setup.py").read_text()
     assert "'param_vel = parameter_tests.parameter_tests_node:main'" in setup_py
+
+
+def test_every_package_is_python_or_interfaces() -> None:
+    assert sorted(PACKAGES + INTERFACE_PACKAGES) == ALL_PACKAGES
+    assert ROSJECT_DIR / "tf2_msgs" in INTERFACE_PACKAGES
+
+
+@pytest.mark.parametrize("package", INTERFACE_PACKAGES, ids=lambda p: p.name)
+def test_interface_package_generates_every_message(package: Path) -> None:
+    root = ET.parse(package / "package.xml").getroot()
+    assert root.get("format") == "3" and root.findtext("name") == package.name
+    assert root.findtext("member_of_group") == "rosidl_interface_packages"
+    cmake = (package / "CMakeLists.txt").read_text()
+    assert f"project({package.name})" in cmake and "rosidl_generate_interfaces(" in cmake
+    for message in sorted((package / "msg").glob("*.msg")):
+        assert f'"msg/{message.name}"' in cmake, f"{message.name} is not generated"
+
+
+def test_tf2_msgs_has_jazzys_tf_message() -> None:
+    text = (ROSJECT_DIR / "tf2_msgs" / "msg" / "TFMessage.msg").read_text()
+    fields = [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
+    assert fields == ["geometry_msgs/TransformStamped[] transforms"]
