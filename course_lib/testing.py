@@ -62,3 +62,19 @@ def run_tests(extra: list[str]) -> int:
     if code == 5:
         print("pytest collected no tests: the suite is missing.", file=sys.stderr)
     return code
+
+
+def with_course_interfaces(packages_stdout: str) -> str:
+    """Add the interface packages the course builds (tf2_msgs) to `ros2 interface packages`.
+
+    The golden transcripts were taken on the wheels alone; with the course's workspace
+    sourced, the real tool lists its interface packages too, in the same sorted list.
+    """
+    from .paths import WORKSPACE_INSTALL_DIR
+
+    share = WORKSPACE_INSTALL_DIR / "share"
+    built = {
+        p.name for p in share.glob("*") if any((p / kind).is_dir() for kind in ("msg", "srv"))
+    }
+    lines = sorted(set(packages_stdout.splitlines()) | built)
+    return "".join(f"{line}\n" for line in lines)

@@ -10,6 +10,7 @@ import pytest
 
 from course_lib.ros2.commands import run_collected
 from course_lib.ros2.interface_text import show_lines
+from course_lib.testing import with_course_interfaces
 
 GOLDEN = Path(__file__).resolve().parents[2] / "golden" / "ros2" / "cases_part2.json"
 CASES = {c["case"]: c for c in json.loads(GOLDEN.read_text())}
@@ -28,6 +29,8 @@ def test_interface_case_matches(name: str) -> None:
     stdout, stderr, code = _run(case["command"])
     if " package " in case["command"]:  # ros2interface prints a set: its order is random
         stdout, expected = sorted(stdout.splitlines()), sorted(case["stdout"].splitlines())
+    elif case["command"] == "ros2 interface packages":
+        expected = with_course_interfaces(case["stdout"])
     else:
         expected = case["stdout"]
     assert (stdout, stderr, code) == (expected, case["stderr"], case["exit"])
