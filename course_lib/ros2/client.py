@@ -31,8 +31,10 @@ GRAPH_SETTLE_S = 1.0
 YOUNG_CLIENT_S = 4.0
 SERVICE_WAIT_S = 5.0
 CALL_TIMEOUT_S = 10.0
-# First wait for a reply before re-sending (a reply normally takes about 1 ms).
+# First wait for a reply before re-sending a read (a reply normally takes about 1 ms).
 FIRST_ATTEMPT_S = 0.5
+# Services whose requests change the node: sent exactly once, after a probe (see _call).
+_WRITES = {"set_parameters": SetParameters.Request}
 _POLL_S = 0.02
 _VALUE_FIELDS = {
     ParameterType.PARAMETER_BOOL: "bool_value",
@@ -210,14 +212,35 @@ class RosClient:
             raise ServiceCallError(
                 f"Wait for service timed out waiting for parameter services for node {node_name}"
             )
-        return self._call_with_retries(client, node_name, request)
-
-    def _call_with_retries(self, client: Any, node_name: str, request: Any) -> Any:
-        """Call the service, re-sending with a doubling timeout while no reply comes."""
-        # A server that has just matched our request topic may not have matched our reply
-        # reader yet; DDS then drops its first reply. Re-sending is safe: get, list and
-        # describe read, and a repeated set writes the same value.
         deadline = time.monotonic() + CALL_TIMEOUT_S
+        if service not in _WRITES:
+            return self._call_with_retries(client, node_name, request, deadline)
+        # Fast DDS's server waits only 100 ms for our reply reader to match before it drops a
+        # reply, and a freshly created client (or a restarted node) is "ready" as soon as we
+        # know the server, before the server knows our reader. An empty request changes
+        # nothing and may be repeated: once one is answered, the reply path exists and the
+        # write is sent exactly once (a re-sent write would apply twice).
+        self._call_with_retries(client, node_name, _WRITES[service](), deadline)
+        return self._call_once(client, node_name, request, deadline)
+
+    def _timed_out(self, node_name: str) -> ServiceCallError:
+        return ServiceCallError(
+            f"Exception while calling service of node '{node_name}': "
+            f"no answer within {CALL_TIMEOUT_S:g} s"
+        )
+
+    def _call_once(self, client: Any, node_name: str, request: Any, deadline: float) -> Any:
+        future = client.call_async(request)
+        try:
+            return self._wait_future(future, max(deadline - time.monotonic(), 0.01))
+        except TimeoutError:
+            client.remove_pending_request(future)
+            raise self._timed_out(node_name) from None
+
+    def _call_with_retries(
+        self, client: Any, node_name: str, request: Any, deadline: float
+    ) -> Any:
+        """Send a request that changes nothing, re-sending with a doubling timeout."""
         attempt_s = FIRST_ATTEMPT_S
         while True:
             future = client.call_async(request)
@@ -227,10 +250,7 @@ class RosClient:
             except TimeoutError:
                 client.remove_pending_request(future)
                 if time.monotonic() >= deadline:
-                    raise ServiceCallError(
-                        f"Exception while calling service of node '{node_name}': "
-                        f"no answer within {CALL_TIMEOUT_S:g} s"
-                    ) from None
+                    raise self._timed_out(node_name) from None
                 attempt_s *= 2
 
     def list_parameters(self, node_name: str, prefixes: Sequence[str] = ()) -> list[str]:
