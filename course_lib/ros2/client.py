@@ -24,8 +24,10 @@ __all__ = ["DISCOVERY_WAIT_S", "RosClient", "ServiceCallError"]
 # How long a node-targeted command looks for a node the graph does not show yet. The real
 # tools wait 1 s (`--timeout`) and so miss freshly started nodes; the course waits longer.
 DISCOVERY_WAIT_S = 2.5
-# A client node younger than this may not have met everyone yet: list verbs wait for it.
+# A client node younger than this may not have met everyone yet: list verbs wait (at most
+# until it is this old) for its view of the graph to stop changing for GRAPH_QUIET_S.
 GRAPH_SETTLE_S = 1.0
+GRAPH_QUIET_S = 0.3
 # Until this age, a node may still be unknown to a fresh client (Fast DDS re-announces every
 # 3 s by default), so node lookups wait at least until the client is this old.
 YOUNG_CLIENT_S = 4.0
@@ -131,11 +133,32 @@ class RosClient:
         self._born = time.monotonic()
 
     # -- graph ---------------------------------------------------------------------------
-    def settle(self) -> None:
-        """Give a young client node time to discover the graph (free once it is warm)."""
+    def settle(self, max_wait: float | None = None) -> None:
+        """Wait until a young client's view of the graph stops changing (free once warm).
+
+        Discovery arrives in bursts: the graph counts as settled once its nodes and topics
+        stayed the same for GRAPH_QUIET_S, or when the client is GRAPH_SETTLE_S old (or
+        `max_wait` passed), whichever comes first.
+        """
         remaining = GRAPH_SETTLE_S - (time.monotonic() - self._born)
-        if remaining > 0:
-            time.sleep(remaining)
+        if max_wait is not None:
+            remaining = min(remaining, max_wait)
+        if remaining <= 0:
+            return
+        last = [self._graph_signature(), time.monotonic()]
+
+        def quiet() -> bool:
+            now, signature = time.monotonic(), self._graph_signature()
+            if signature != last[0]:
+                last[:] = [signature, now]
+            return now - last[1] >= GRAPH_QUIET_S
+
+        wait_until(quiet, remaining)
+
+    def _graph_signature(self) -> tuple:
+        nodes = tuple(sorted(self.node.get_node_names_and_namespaces()))
+        topics = tuple(sorted((n, tuple(t)) for n, t in self.node.get_topic_names_and_types()))
+        return nodes, topics
 
     def node_names(self, *, include_hidden: bool = False) -> list[NodeName]:
         """Return the nodes the graph shows (hidden ones only if asked)."""
