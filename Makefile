@@ -4,7 +4,10 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP_ENV := $(VENV)/.installed
 STAMP_WS := rosject/install/.built
-ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o -type f -print 2>/dev/null)
+# colcon --symlink-install links every source and installed file, so editing one needs no
+# rebuild: only the build description does, and a launch/ or config/ folder whose files were
+# added or removed (setup.py installs them by glob).
+ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
 
 .PHONY: lab setup test test-fast bench notebooks lint format clean doctor stop
 
