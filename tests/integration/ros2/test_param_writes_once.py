@@ -69,8 +69,11 @@ class Events:
 
 @pytest.fixture
 def param_vel(session: Session) -> Iterator[str]:
-    """Start a fresh tutorial node; yield its name."""
+    """Start a fresh tutorial node; yield its name once the graph shows its services."""
     child = session.run("parameter_tests", "param_vel", "--ros-args", "-r", "__node:=once_node")
+    ready = RosClient(session.node, session.wait_future)
+    assert ready.services_ready("/once_node", timeout=15), "/once_node never answered"
+    ready.close()
     yield "/once_node"
     child.stop()
 
