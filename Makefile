@@ -34,8 +34,9 @@ lint: setup  ## ruff lint and format check
 format: setup
 	$(VENV)/bin/ruff format . && $(VENV)/bin/ruff check --fix .
 
-doctor: setup  ## Say what is installed and what is running
-	$(PY) -m course_lib doctor
+doctor:  ## Say what is installed, what is stale and what is running (rebuilds nothing)
+	@test -x $(PY) || { echo "No environment in $(VENV)/ yet: run \`make setup\`."; exit 1; }
+	@$(PY) -m course_lib doctor
 
 stop: ## Stop every course process of this user
 	$(PY) -m course_lib stop

@@ -1,4 +1,5 @@
-"""The Makefile rebuilds the workspace for a changed build description, not for an edited file."""
+"""The Makefile rebuilds the workspace for a changed build description, not for an edited file;
+`make doctor` reports a stale set-up instead of rebuilding it."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ from pathlib import Path
 
 import pytest
 
+from course_lib.doctor import stale_steps
 from course_lib.paths import REPO_ROOT, ROSJECT_DIR
 
 STAMP = "rosject/install/.built"
@@ -65,3 +67,24 @@ def test_edited_files_need_no_rebuild(built: None, newer, relpath: str) -> None:
 def test_build_description_or_file_list_rebuilds(built: None, newer, relpath: str) -> None:  # type: ignore[no-untyped-def]
     newer(PACKAGE / relpath)
     assert not _up_to_date()
+
+
+def test_doctor_runs_no_build_step(built: None, newer) -> None:  # type: ignore[no-untyped-def]
+    newer(PACKAGE / "setup.py")
+    dry = subprocess.run(
+        ["make", "-n", "doctor"], cwd=REPO_ROOT, capture_output=True, text=True, check=True
+    )
+    assert "course_lib build" not in dry.stdout and "pip install" not in dry.stdout, dry.stdout
+
+
+def test_doctor_reports_the_stale_workspace(built: None, newer) -> None:  # type: ignore[no-untyped-def]
+    newer(PACKAGE / "setup.py")
+    stamp_time = (REPO_ROOT / STAMP).stat().st_mtime_ns
+    lines = stale_steps()
+    assert "ROS workspace (rosject/install): stale: `make setup` rebuilds it with colcon" in lines
+    assert "environment (.venv): up to date" in lines
+    assert (REPO_ROOT / STAMP).stat().st_mtime_ns == stamp_time
+
+
+def test_doctor_says_up_to_date_when_it_is(built: None) -> None:
+    assert all(line.endswith("up to date") for line in stale_steps())
