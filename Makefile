@@ -9,7 +9,7 @@ STAMP_WS := rosject/install/.built
 # added or removed (setup.py installs them by glob).
 ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
 
-.PHONY: lab setup test test-fast bench notebooks lint format clean doctor stop
+.PHONY: lab setup test test-fast bench notebooks lint format clean doctor stop smoke-python
 
 lab: setup  ## Start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
 	$(PY) -m course_lib lab $(EXTRA)
@@ -27,6 +27,9 @@ bench: setup  ## Print the course's speed and memory figures
 
 notebooks: setup  ## Re-execute every notebook to refresh its stored outputs
 	$(PY) -m course_lib notebooks
+
+smoke-python:  ## Prove CPython 3.12 as well: fresh venv, environment.txt, rclpy + MuJoCo smoke
+	scripts/smoke_python.sh $(SMOKE_PYTHON)
 
 lint: setup  ## ruff lint and format check
 	$(VENV)/bin/ruff check . && $(VENV)/bin/ruff format --check .
