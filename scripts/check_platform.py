@@ -4,7 +4,7 @@ import platform
 import sys
 
 # The ROS 2 Jazzy wheels also cover 3.10, but the pinned mujoco 4.0.0 and numpy 2.4.6 need 3.11+;
-# CI proves 3.11 (`make test`) and 3.12 (scripts/smoke_python.sh).
+# `make test` runs on 3.11 and `make smoke-python` (scripts/smoke_python.sh) proves 3.12.
 SUPPORTED = "Linux x86_64 with CPython 3.11 or 3.12"
 
 
