@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import ast
-import asyncio
+import base64
 import inspect
+import os
+import socket
 import subprocess
 import sys
 import textwrap
@@ -12,8 +14,6 @@ from collections.abc import Iterator
 
 import numpy as np
 import pytest
-import tornado.httpclient
-import tornado.websocket
 from meshcat.commands import SetTransform
 from meshcat.path import Path as MeshcatPath
 from meshcat.servers.zmqserver import ZMQWebSocketBridge
@@ -48,19 +48,46 @@ def server() -> Iterator[tuple[str, int]]:
             process.stdout.close()
 
 
+def _handshake(port: int, headers: dict[str, str]) -> tuple[int, socket.socket]:
+    """Open the viewer's websocket with `headers`; return the HTTP status and the socket."""
+    sock = socket.create_connection(("127.0.0.1", port), timeout=10)
+    fields = {
+        "Host": f"127.0.0.1:{port}",
+        "Upgrade": "websocket",
+        "Connection": "Upgrade",
+        "Sec-WebSocket-Key": base64.b64encode(os.urandom(16)).decode(),
+        "Sec-WebSocket-Version": "13",
+        **headers,
+    }
+    request = "GET / HTTP/1.1\r\n" + "".join(f"{k}: {v}\r\n" for k, v in fields.items())
+    sock.sendall((request + "\r\n").encode())
+    reply = b""
+    while b"\r\n\r\n" not in reply:
+        chunk = sock.recv(4096)
+        if not chunk:
+            break
+        reply += chunk
+    return int(reply.split(b" ", 2)[1]), sock
+
+
 def _connect(port: int, headers: dict[str, str]) -> int:
-    """Open the viewer's websocket with `headers`; return 101 when accepted, else the status."""
+    """Return 101 when the websocket is accepted, else the HTTP status (403: refused)."""
+    status, sock = _handshake(port, headers)
+    sock.close()
+    return status
 
-    async def attempt() -> int:
-        request = tornado.httpclient.HTTPRequest(f"ws://127.0.0.1:{port}/", headers=headers)
-        try:
-            connection = await asyncio.wait_for(tornado.websocket.websocket_connect(request), 10)
-        except tornado.httpclient.HTTPClientError as err:
-            return err.code
-        connection.close()
-        return 101
 
-    return asyncio.run(attempt())
+def _first_frame(sock: socket.socket) -> bytes:
+    """Read one (unmasked, server-to-client) websocket frame's payload."""
+    reader = sock.makefile("rb")
+    try:
+        header = reader.read(2)
+        length = header[1] & 0x7F
+        if length >= 126:
+            length = int.from_bytes(reader.read(2 if length == 126 else 8), "big")
+        return reader.read(length)
+    finally:
+        reader.close()
 
 
 def test_the_viewer_page_own_origin_is_accepted(server: tuple[str, int]) -> None:
@@ -101,13 +128,10 @@ def test_server_window_speaks_meshcats_protocol(server: tuple[str, int]) -> None
     finally:
         window.close()
 
-    async def first_message() -> bytes:
-        connection = await tornado.websocket.websocket_connect(f"ws://127.0.0.1:{server[1]}/")
-        message = await asyncio.wait_for(connection.read_message(), 10)
-        connection.close()
-        return message
-
-    message = asyncio.run(first_message())
+    status, sock = _handshake(server[1], {})
+    with sock:
+        assert status == 101
+        message = _first_frame(sock)
     assert b"set_transform" in message and b"/meshcat/probe" in message
 
 

@@ -1,4 +1,4 @@
-"""Every document the code and docs cite by name (`SOMETHING.md`) is in the repository."""
+"""Every markdown document the code and docs cite by name (in capitals) is in the repository."""
 
 from __future__ import annotations
 
