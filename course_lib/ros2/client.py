@@ -129,6 +129,8 @@ class RosClient:
         self.node = node
         self._wait_future = wait_future
         self._clients: dict[tuple[str, str], Any] = {}
+        # Per client: the server reply writers whose path to our reply reader a probe proved.
+        self._proven: dict[tuple[str, str], frozenset[bytes]] = {}
         self._lock = threading.Lock()
         self._born = time.monotonic()
 
@@ -242,9 +244,26 @@ class RosClient:
         # reply, and a freshly created client (or a restarted node) is "ready" as soon as we
         # know the server, before the server knows our reader. An empty request changes
         # nothing and may be repeated: once one is answered, the reply path exists and the
-        # write is sent exactly once (a re-sent write would apply twice).
-        self._call_with_retries(client, node_name, _WRITES[service](), deadline)
+        # write is sent exactly once (a re-sent write would apply twice). The proof holds
+        # until the server's reply writer changes (a restarted node); unknown writers: probe.
+        key, writers = (node_name, service), self._reply_writers(node_name, service)
+        if not writers or self._proven.get(key) != writers:
+            self._call_with_retries(client, node_name, _WRITES[service](), deadline)
+            self._proven[key] = writers
         return self._call_once(client, node_name, request, deadline)
+
+    def _reply_writers(self, node_name: str, service: str) -> frozenset[bytes]:
+        """Return the GIDs of the service's reply writers, as the local graph knows them.
+
+        ROS 2 maps a service's replies to the DDS topic `rr/<service>Reply`; an RMW that
+        names it otherwise yields nothing here, and every write is then probed first.
+        """
+        topic = f"rr{node_name}/{service}Reply"
+        try:
+            infos = self.node.get_publishers_info_by_topic(topic, no_mangle=True)
+        except Exception:  # an RMW without this graph query: probe every write
+            return frozenset()
+        return frozenset(bytes(info.endpoint_gid) for info in infos)
 
     def _timed_out(self, node_name: str) -> ServiceCallError:
         return ServiceCallError(
@@ -311,3 +330,4 @@ class RosClient:
             for client in self._clients.values():
                 self.node.destroy_client(client)
             self._clients.clear()
+            self._proven.clear()

@@ -127,3 +127,41 @@ def test_a_slow_node_gets_the_write_once(session: Session) -> None:
         client.close()
         events.close()
         child.stop()
+
+
+def test_the_server_reply_writer_is_known(session: Session, param_vel: str) -> None:
+    """Tripwire: writes skip the probe once proven for this writer (else each write probes)."""
+    client = RosClient(session.node, session.wait_future)
+    try:
+        assert client.services_ready(param_vel, timeout=10)
+        assert len(client._reply_writers(param_vel, "set_parameters")) == 1, (
+            "the graph no longer shows the service's reply writer (rr/<service>Reply): every "
+            "write now costs a probe round trip"
+        )
+    finally:
+        client.close()
+
+
+def test_a_restarted_node_gets_each_write_once(session: Session) -> None:
+    """A cached client meets a new server (new reply writer): the path is proven again."""
+    client = RosClient(session.node, session.wait_future)
+    events = Events(session, "/again_node")
+    try:
+        for value in (0.11, 0.22):
+            child = session.run(
+                "parameter_tests", "param_vel", "--ros-args", "-r", "__node:=again_node"
+            )
+            try:
+                assert client.services_ready("/again_node", timeout=15)
+                started = time.monotonic()
+                (result,) = client.set_parameters(
+                    "/again_node", [("velocity", ParamValue.of(value))]
+                )
+                assert result.successful and time.monotonic() - started < 2.0
+            finally:
+                child.stop()
+            assert wait_until(lambda: not client.services_ready("/again_node", timeout=0), 10)
+        assert events.settled(2) == [("velocity", 0.11), ("velocity", 0.22)]
+    finally:
+        client.close()
+        events.close()
