@@ -4,9 +4,12 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP_ENV := $(VENV)/.installed
 STAMP_WS := rosject/install/.built
-ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o -type f -print 2>/dev/null)
+# colcon --symlink-install links every source and installed file, so editing one needs no
+# rebuild: only the build description does, and a launch/ or config/ folder whose files were
+# added or removed (setup.py installs them by glob).
+ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
 
-.PHONY: lab setup test test-fast bench notebooks lint format clean doctor stop
+.PHONY: lab setup test test-fast bench notebooks lint format clean doctor stop smoke-python
 
 lab: setup  ## Start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
 	$(PY) -m course_lib lab $(EXTRA)
@@ -25,14 +28,18 @@ bench: setup  ## Print the course's speed and memory figures
 notebooks: setup  ## Re-execute every notebook to refresh its stored outputs
 	$(PY) -m course_lib notebooks
 
+smoke-python:  ## Prove CPython 3.12 as well: fresh venv, environment.txt, rclpy + MuJoCo smoke
+	scripts/smoke_python.sh $(SMOKE_PYTHON)
+
 lint: setup  ## ruff lint and format check
 	$(VENV)/bin/ruff check . && $(VENV)/bin/ruff format --check .
 
 format: setup
 	$(VENV)/bin/ruff format . && $(VENV)/bin/ruff check --fix .
 
-doctor: setup  ## Say what is installed and what is running
-	$(PY) -m course_lib doctor
+doctor:  ## Say what is installed, what is stale and what is running (rebuilds nothing)
+	@test -x $(PY) || { echo "No environment in $(VENV)/ yet: run \`make setup\`."; exit 1; }
+	@$(PY) -m course_lib doctor
 
 stop: ## Stop this user's course processes (labs, simulations, viewers, nodes, daemons)
 	$(PY) -m course_lib stop

@@ -1,4 +1,5 @@
-"""Environment for every test and notebook: the runner sets it, never the cells (STYLE.md)."""
+"""Environment for every test and notebook: the runner sets it, never the cells (so checked
+outputs never depend on the machine)."""
 
 import os
 

@@ -2,7 +2,7 @@
 
 Run: .venv/bin/python -m bench.param_to_odom
 The tutorial node publishes its `velocity` on /cmd_vel every 0.1 s, so up to 100 ms of the
-figure is the node's own timer; the goal (DESIGN.md section 6) is under 250 ms.
+figure is the node's own timer; the course's goal is under 250 ms.
 """
 
 from __future__ import annotations

@@ -11,6 +11,7 @@ __all__ = [
     "ProcessStartError",
     "RuntimeDirError",
     "SessionClosedError",
+    "SessionThreadError",
 ]
 
 
@@ -62,6 +63,17 @@ class SessionClosedError(CourseError):
             "This course session is closed.",
             hint="run the lesson's first cell again (it starts a fresh session).",
         )
+
+
+class SessionThreadError(CourseError):
+    """The session's ROS thread stopped on an error (logged with its traceback)."""
+
+    def __init__(self, error: BaseException) -> None:
+        super().__init__(
+            f"the session's ROS thread stopped: {type(error).__name__}: {error}; "
+            "run the first cell again"
+        )
+        self.error = error
 
 
 class DomainUnavailableError(CourseError):

@@ -4,7 +4,9 @@ Each notebook runs top to bottom in a fresh kernel (its own ROS domain, the test
 environment), then volatile parts are removed so a second run changes nothing: execution
 metadata and widget state are dropped, the sanitize rules of tests/nbval_sanitize.cfg are
 applied to text outputs, and cells tagged `nbval-ignore-output` (3D view, widgets, live plots)
-keep their stored outputs when their source did not change (`--all` refreshes those too).
+keep their stored outputs when their source did not change (`--all` refreshes those too). A
+cell's stored outputs are found by its cell id, never by its source: two cells may hold the
+same code (lesson 11 runs `travel.check()` twice) and must each keep their own output.
 """
 
 from __future__ import annotations
@@ -62,15 +64,20 @@ def clean_notebook(nb: Any, old: Any | None, *, keep_live: bool = True) -> Any:
     nb.metadata.get("kernelspec", {}).pop("env", None)
     previous = {}
     if old is not None:
-        previous = {c.source: c for c in old.cells if c.cell_type == "code"}
+        previous = {c.get("id"): c for c in old.cells if c.cell_type == "code" and c.get("id")}
     for cell in nb.cells:
         cell.metadata.pop("execution", None)
         if cell.cell_type != "code":
             continue
-        before = previous.get(cell.source)
+        before = previous.get(cell.get("id"))
+        if before is not None and before.source != cell.source:
+            before = None  # the cell was edited: its old output no longer belongs to it
         live = IGNORE_TAG in cell.metadata.get("tags", [])
         if keep_live and live and before is not None and before.outputs:
             cell.outputs = copy.deepcopy(before.outputs)
+            for output in cell.outputs:  # the kept result now shows this run's count
+                if output.get("output_type") == "execute_result":
+                    output["execution_count"] = cell.execution_count
         cell.outputs = [_clean_output(o, rules) for o in cell.outputs]
     scrub_live_outputs(nb)  # a stored 3D view or widget would only show an error reopened
     return nb

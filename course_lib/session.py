@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import atexit
 import contextlib
+import logging
 import os
 import threading
 from collections.abc import Mapping, Sequence
@@ -15,7 +16,7 @@ from typing import Any
 
 from . import ament
 from .domain import DOMAIN_ENV, isolation_env, lease_domain
-from .errors import SessionClosedError
+from .errors import SessionClosedError, SessionThreadError
 from .paths import PACKAGE_DIR
 from .processes import ChildProcess, reap_orphans, spawn
 
@@ -24,6 +25,7 @@ __all__ = ["FASTDDS_PROFILE", "SESSION_DOMAIN_ENV", "Session", "get_session", "s
 FASTDDS_PROFILE = PACKAGE_DIR / "dds" / "fastdds_profile.xml"
 _PROFILE_ENV = "FASTRTPS_DEFAULT_PROFILES_FILE"
 SESSION_DOMAIN_ENV = "COURSE_SESSION_DOMAIN"  # marks a ROS_DOMAIN_ID we set ourselves
+_log = logging.getLogger(__name__)
 
 
 def _explicit_env() -> dict[str, str]:
@@ -69,6 +71,7 @@ class Session:
         self._children: list[ChildProcess] = []
         self._lock = threading.Lock()
         self._closed = False
+        self.spin_error: BaseException | None = None  # why the spin thread stopped, if it did
         self.context = rclpy.Context()
         rclpy.init(
             context=self.context,
@@ -93,8 +96,13 @@ class Session:
         return f"<Session domain={self.domain_id} {state}>"
 
     def _spin(self) -> None:
-        with contextlib.suppress(Exception):  # ends when the context shuts down
+        try:
             self.executor.spin()
+        except Exception as err:
+            if self._closed or not self.context.ok():
+                return  # the session is closing: spin ends with the context
+            self.spin_error = err
+            _log.error("the session's ROS thread stopped", exc_info=err)
 
     @property
     def closed(self) -> bool:
@@ -109,6 +117,8 @@ class Session:
     def _check_open(self) -> None:
         if self._closed:
             raise SessionClosedError()
+        if self.spin_error is not None:
+            raise SessionThreadError(self.spin_error)
 
     def wait_future(self, future: Any, timeout: float) -> Any:
         """Wait for an rclpy future completed by the spin thread; raise TimeoutError."""
@@ -188,9 +198,17 @@ _current_lock = threading.Lock()
 
 
 def get_session(**kwargs: Any) -> Session:
-    """Return this process's session, starting one if there is none or it was closed."""
+    """Return this process's session, starting one if there is none or it was closed.
+
+    A session whose ROS thread stopped is reported once (SessionThreadError) and closed, so
+    running the lesson's first cell again starts a fresh one.
+    """
     global _current
     with _current_lock:
+        if _current is not None and _current.spin_error is not None and not _current.closed:
+            error = _current.spin_error
+            _current.close()
+            raise SessionThreadError(error)
         if _current is None or _current.closed:
             _current = Session(**kwargs)
         return _current

@@ -13,7 +13,7 @@ from .session import SESSION_DOMAIN_ENV
 
 __all__ = ["TEST_ENV", "independent_env", "pytest_argv", "run_tests"]
 
-# What the runner fixes so that checked outputs never depend on the machine (STYLE.md).
+# What the runner fixes so that checked outputs never depend on the machine.
 TEST_ENV = {
     "RCUTILS_COLORIZED_OUTPUT": "0",
     "PYTHONHASHSEED": "0",

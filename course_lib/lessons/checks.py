@@ -8,12 +8,12 @@ from typing import Any
 
 import yaml
 
-from ..paths import ROSJECT_DIR
 from .report import Check, check
 
 __all__ = ["installed_checks", "run_checks"]
 
-TUTORIAL_YAML = ROSJECT_DIR / "parameter_tests" / "config" / "param_vel_node.yaml"
+# Lesson 8's dump: the learner's own file (the package's params file is never rewritten).
+DUMP_NAME = "dump/param_vel_node.yaml"
 
 
 def _nodes() -> list[str]:
@@ -182,21 +182,22 @@ def _lesson_7(lesson: Any) -> list[Check]:
 def _lesson_8(lesson: Any) -> list[Check]:
     from ..ros2 import api
 
+    dump = lesson.learner_file(DUMP_NAME)
     try:
-        data = yaml.safe_load(TUTORIAL_YAML.read_text(encoding="utf-8"))
-        value = data["/param_vel_node"]["ros__parameters"]["velocity"]
+        text = dump.read_text(encoding="utf-8")
+        value = yaml.safe_load(text)["/param_vel_node"]["ros__parameters"]["velocity"]
     except (OSError, yaml.YAMLError, KeyError, TypeError):
-        data, value = None, None
+        text, value = None, None
     live = api.ros2("param dump /param_vel_node").stdout
     return [
         check(
-            "config/param_vel_node.yaml holds /param_vel_node's ros__parameters",
+            f"my_files/{DUMP_NAME} holds /param_vel_node's ros__parameters",
             isinstance(value, float),
             "run the cell that redirects the dump into the file.",
         ),
         check(
             "the file is exactly what `ros2 param dump` prints now",
-            live == TUTORIAL_YAML.read_text(encoding="utf-8"),
+            live == text,
             "dump again into the file.",
         ),
     ]

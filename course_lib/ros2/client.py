@@ -24,15 +24,19 @@ __all__ = ["DISCOVERY_WAIT_S", "RosClient", "ServiceCallError"]
 # How long a node-targeted command looks for a node the graph does not show yet. The real
 # tools wait 1 s (`--timeout`) and so miss freshly started nodes; the course waits longer.
 DISCOVERY_WAIT_S = 2.5
-# A client node younger than this may not have met everyone yet: list verbs wait for it.
+# A client node younger than this may not have met everyone yet: list verbs wait (at most
+# until it is this old) for its view of the graph to stop changing for GRAPH_QUIET_S.
 GRAPH_SETTLE_S = 1.0
+GRAPH_QUIET_S = 0.3
 # Until this age, a node may still be unknown to a fresh client (Fast DDS re-announces every
 # 3 s by default), so node lookups wait at least until the client is this old.
 YOUNG_CLIENT_S = 4.0
 SERVICE_WAIT_S = 5.0
 CALL_TIMEOUT_S = 10.0
-# First wait for a reply before re-sending (a reply normally takes about 1 ms).
+# First wait for a reply before re-sending a read (a reply normally takes about 1 ms).
 FIRST_ATTEMPT_S = 0.5
+# Services whose requests change the node: sent exactly once, after a probe (see _call).
+_WRITES = {"set_parameters": SetParameters.Request}
 _POLL_S = 0.02
 _VALUE_FIELDS = {
     ParameterType.PARAMETER_BOOL: "bool_value",
@@ -125,15 +129,38 @@ class RosClient:
         self.node = node
         self._wait_future = wait_future
         self._clients: dict[tuple[str, str], Any] = {}
+        # Per client: the server reply writers whose path to our reply reader a probe proved.
+        self._proven: dict[tuple[str, str], frozenset[bytes]] = {}
         self._lock = threading.Lock()
         self._born = time.monotonic()
 
     # -- graph ---------------------------------------------------------------------------
-    def settle(self) -> None:
-        """Give a young client node time to discover the graph (free once it is warm)."""
+    def settle(self, max_wait: float | None = None) -> None:
+        """Wait until a young client's view of the graph stops changing (free once warm).
+
+        Discovery arrives in bursts: the graph counts as settled once its nodes and topics
+        stayed the same for GRAPH_QUIET_S, or when the client is GRAPH_SETTLE_S old (or
+        `max_wait` passed), whichever comes first.
+        """
         remaining = GRAPH_SETTLE_S - (time.monotonic() - self._born)
-        if remaining > 0:
-            time.sleep(remaining)
+        if max_wait is not None:
+            remaining = min(remaining, max_wait)
+        if remaining <= 0:
+            return
+        last = [self._graph_signature(), time.monotonic()]
+
+        def quiet() -> bool:
+            now, signature = time.monotonic(), self._graph_signature()
+            if signature != last[0]:
+                last[:] = [signature, now]
+            return now - last[1] >= GRAPH_QUIET_S
+
+        wait_until(quiet, remaining)
+
+    def _graph_signature(self) -> tuple:
+        nodes = tuple(sorted(self.node.get_node_names_and_namespaces()))
+        topics = tuple(sorted((n, tuple(t)) for n, t in self.node.get_topic_names_and_types()))
+        return nodes, topics
 
     def node_names(self, *, include_hidden: bool = False) -> list[NodeName]:
         """Return the nodes the graph shows (hidden ones only if asked)."""
@@ -210,14 +237,52 @@ class RosClient:
             raise ServiceCallError(
                 f"Wait for service timed out waiting for parameter services for node {node_name}"
             )
-        return self._call_with_retries(client, node_name, request)
-
-    def _call_with_retries(self, client: Any, node_name: str, request: Any) -> Any:
-        """Call the service, re-sending with a doubling timeout while no reply comes."""
-        # A server that has just matched our request topic may not have matched our reply
-        # reader yet; DDS then drops its first reply. Re-sending is safe: get, list and
-        # describe read, and a repeated set writes the same value.
         deadline = time.monotonic() + CALL_TIMEOUT_S
+        if service not in _WRITES:
+            return self._call_with_retries(client, node_name, request, deadline)
+        # Fast DDS's server waits only 100 ms for our reply reader to match before it drops a
+        # reply, and a freshly created client (or a restarted node) is "ready" as soon as we
+        # know the server, before the server knows our reader. An empty request changes
+        # nothing and may be repeated: once one is answered, the reply path exists and the
+        # write is sent exactly once (a re-sent write would apply twice). The proof holds
+        # until the server's reply writer changes (a restarted node); unknown writers: probe.
+        key, writers = (node_name, service), self._reply_writers(node_name, service)
+        if not writers or self._proven.get(key) != writers:
+            self._call_with_retries(client, node_name, _WRITES[service](), deadline)
+            self._proven[key] = writers
+        return self._call_once(client, node_name, request, deadline)
+
+    def _reply_writers(self, node_name: str, service: str) -> frozenset[bytes]:
+        """Return the GIDs of the service's reply writers, as the local graph knows them.
+
+        ROS 2 maps a service's replies to the DDS topic `rr/<service>Reply`; an RMW that
+        names it otherwise yields nothing here, and every write is then probed first.
+        """
+        topic = f"rr{node_name}/{service}Reply"
+        try:
+            infos = self.node.get_publishers_info_by_topic(topic, no_mangle=True)
+        except Exception:  # an RMW without this graph query: probe every write
+            return frozenset()
+        return frozenset(bytes(info.endpoint_gid) for info in infos)
+
+    def _timed_out(self, node_name: str) -> ServiceCallError:
+        return ServiceCallError(
+            f"Exception while calling service of node '{node_name}': "
+            f"no answer within {CALL_TIMEOUT_S:g} s"
+        )
+
+    def _call_once(self, client: Any, node_name: str, request: Any, deadline: float) -> Any:
+        future = client.call_async(request)
+        try:
+            return self._wait_future(future, max(deadline - time.monotonic(), 0.01))
+        except TimeoutError:
+            client.remove_pending_request(future)
+            raise self._timed_out(node_name) from None
+
+    def _call_with_retries(
+        self, client: Any, node_name: str, request: Any, deadline: float
+    ) -> Any:
+        """Send a request that changes nothing, re-sending with a doubling timeout."""
         attempt_s = FIRST_ATTEMPT_S
         while True:
             future = client.call_async(request)
@@ -227,10 +292,7 @@ class RosClient:
             except TimeoutError:
                 client.remove_pending_request(future)
                 if time.monotonic() >= deadline:
-                    raise ServiceCallError(
-                        f"Exception while calling service of node '{node_name}': "
-                        f"no answer within {CALL_TIMEOUT_S:g} s"
-                    ) from None
+                    raise self._timed_out(node_name) from None
                 attempt_s *= 2
 
     def list_parameters(self, node_name: str, prefixes: Sequence[str] = ()) -> list[str]:
@@ -272,3 +334,4 @@ class RosClient:
             for client in self._clients.values():
                 self.node.destroy_client(client)
             self._clients.clear()
+            self._proven.clear()

@@ -9,6 +9,7 @@ from __future__ import annotations
 import contextlib
 import json
 import os
+import signal
 import socket
 import threading
 import time
@@ -90,6 +91,10 @@ def serve(*, idle_s: float | None = None) -> int:
     from ..session import get_session
     from .client import RosClient
 
+    stopping = threading.Event()
+    if threading.current_thread() is threading.main_thread():
+        # Ctrl-C stops it cleanly, even when started in the background (SIGINT ignored there).
+        signal.signal(signal.SIGINT, lambda *_: stopping.set())
     domain = os.environ.get("ROS_DOMAIN_ID", "")
     path = str(daemon_socket(domain))
     server = _claim(path)
@@ -100,7 +105,7 @@ def serve(*, idle_s: float | None = None) -> int:
     server.settimeout(1.0)
     last = time.monotonic()
     try:
-        while idle_s is None or time.monotonic() - last < idle_s:
+        while not stopping.is_set() and (idle_s is None or time.monotonic() - last < idle_s):
             try:
                 conn, _ = server.accept()
             except TimeoutError:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import collections
 import contextlib
+import logging
 import threading
 import time
 from typing import Any
@@ -46,6 +47,7 @@ _OVERRIDABLE = QoSOverridingOptions(
         QoSPolicyKind.RELIABILITY,
     ]
 )
+_log = logging.getLogger(__name__)
 
 
 class Bridge:
@@ -73,6 +75,7 @@ class Bridge:
         self._inputs: collections.deque[tuple[str, Any]] = collections.deque()
         self._wake = threading.Event()
         self._stop = threading.Event()
+        self.spin_error: BaseException | None = None  # why the ROS thread stopped, if it did
         self._publishers()
         mujoco_node = self.nodes["mujoco"]
         mujoco_node.add_post_set_parameters_callback(self._on_parameters)
@@ -128,8 +131,15 @@ class Bridge:
         self._reset_done = n["mujoco"].create_publisher(UInt32, RESET_DONE_TOPIC, 10)
 
     def _spin(self) -> None:
-        with contextlib.suppress(Exception):  # ends when the context shuts down
+        """Serve the nodes' callbacks; a callback's error stops the whole world, logged."""
+        try:
             self.executor.spin()
+        except Exception as err:
+            if self._stop.is_set() or not self.executor.context.ok():
+                return  # ends when the context shuts down
+            self.spin_error = err
+            _log.error("the simulation's ROS thread stopped", exc_info=err)
+            self.stop()  # a world without its ROS callbacks would ignore every command
 
     def _on_cmd_vel(self, msg: Twist) -> None:
         self._inputs.append(("cmd", (msg.linear.x, msg.angular.z)))
@@ -222,6 +232,7 @@ class Bridge:
 
     def close(self) -> None:
         """Stop spinning and destroy the nodes (the caller shuts the context down)."""
+        self._stop.set()
         if self.camera is not None:
             self.camera.close()
         self.executor.shutdown(timeout_sec=2.0)

@@ -155,13 +155,13 @@ def _drop_own_clock_subscription(node: Node) -> None:
 
     These nodes stamp messages with MuJoCo's time directly and never read their ROS clock;
     five in-process /clock subscriptions halved the faster-than-real-time speed (53x -> 25x).
-    rclpy 7.1.6 keeps the subscription in TimeSource._clock_sub; other versions keep it.
+    Only public calls: the node's subscriptions and destroy_subscription (rclpy's time source
+    keeps a handle it never uses again; tests/integration/sim/test_sim_nodes_clock.py checks the
+    graph shows no /clock subscriber on these nodes).
     """
-    source = getattr(node, "_time_source", None)
-    subscription = getattr(source, "_clock_sub", None)
-    if subscription is not None:
-        node.destroy_subscription(subscription)
-        source._clock_sub = None  # type: ignore[union-attr]
+    for subscription in list(node.subscriptions):
+        if subscription.topic_name == "/clock":
+            node.destroy_subscription(subscription)
 
 
 def create_nodes(context: Context, specs: list[NodeSpec]) -> dict[str, Node]:

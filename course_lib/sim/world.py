@@ -248,8 +248,12 @@ class World:
                 del _worlds[id(self.session)]
         if not self.session.closed:
             node = self.session.node
-            with contextlib.suppress(Exception):  # the session may be closing concurrently
-                node.destroy_subscription(self._sub)
-                node.destroy_publisher(self._cmd)
-                node.destroy_publisher(self._reset)
-                node.destroy_subscription(self._reset_sub)
+            steps = (
+                (node.destroy_subscription, self._sub),
+                (node.destroy_publisher, self._cmd),
+                (node.destroy_publisher, self._reset),
+                (node.destroy_subscription, self._reset_sub),
+            )
+            for destroy, entity in steps:  # each step on its own: one failure skips no other
+                with contextlib.suppress(Exception):  # the session may be closing concurrently
+                    destroy(entity)

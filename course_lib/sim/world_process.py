@@ -54,7 +54,10 @@ def _settings(args: argparse.Namespace) -> SimulationSettings:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run until SIGINT/SIGTERM (or --duration); 0 on a clean stop, 2 on a settings error."""
+    """Run until SIGINT/SIGTERM (or --duration); 0 on a clean stop, 2 on a settings error.
+
+    1 when a ROS callback raised: its traceback is logged, then this last line names it.
+    """
     import rclpy
     from rclpy.signals import SignalHandlerOptions
     from rclpy.utilities import remove_ros_args
@@ -97,6 +100,10 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     try:
         bridge.run(ready=ready_and_mark, max_sim_time_s=args.duration)
+        if bridge.spin_error is not None:
+            error = bridge.spin_error
+            logger.error(f"the simulation's ROS thread stopped: {type(error).__name__}: {error}")
+            return 1
         simulated, wall = sim.time - started[0], time.monotonic() - started[1]
         logger.info(
             f"Simulated {simulated:.2f} s in {wall:.2f} s of wall time "

@@ -3,13 +3,21 @@
 Run as `python -m course_lib.viz.server`; it prints `zmq_url=...` and `web_url=...` once it
 listens, then serves until it is stopped (the session stops it, or it dies with the kernel).
 meshcat-python's own `Visualizer()` would start a server that outlives a killed kernel.
+
+The viewer's websocket accepts a browser page only from the origin it serves: the viewer page
+itself, or the Jupyter server (or hub) whose proxy forwards it, which keeps the request's Host.
+Other origins (any other web page open in the learner's browser) are refused, unless listed
+in COURSE_VIEWER_ORIGINS (comma-separated, e.g. `https://hub.example.org`) or `--origin`.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import signal
 import sys
+from collections.abc import Iterable
+from urllib.parse import urlsplit
 
 import tornado.httpserver
 import tornado.ioloop
@@ -25,7 +33,9 @@ from meshcat.servers.zmqserver import (
     ZMQWebSocketBridge,
 )
 
-__all__ = ["LocalBridge", "main"]
+__all__ = ["ORIGINS_ENV", "LocalBridge", "main", "origin_allowed"]
+
+ORIGINS_ENV = "COURSE_VIEWER_ORIGINS"
 
 
 _PAGE = """<!DOCTYPE html>
@@ -63,18 +73,38 @@ class _ViewerPage(tornado.web.RequestHandler):
         self.write(_PAGE)
 
 
-class _AnyOriginWebSocket(WebSocketHandler):
-    """Accept the viewer page whichever origin serves it (direct, or a Jupyter proxy)."""
+def _normal(origin: str) -> str:
+    parts = urlsplit(origin.strip().lower())
+    return f"{parts.scheme}://{parts.netloc}"
+
+
+def origin_allowed(origin: str, host: str | None, allowed: Iterable[str] = ()) -> bool:
+    """Return True for a page on the request's own host, or one of the `allowed` origins."""
+    if host and urlsplit(origin.strip().lower()).netloc == host.strip().lower():
+        return True
+    return _normal(origin) in {_normal(a) for a in allowed if a.strip()}
+
+
+class _SameOriginWebSocket(WebSocketHandler):
+    """meshcat's websocket, for pages of the origins the course serves only."""
 
     def check_origin(self, origin: str) -> bool:
-        return True
+        return origin_allowed(origin, self.request.headers.get("Host"), self.bridge.origins)
 
 
 class LocalBridge(ZMQWebSocketBridge):
-    """meshcat's bridge bound to one host, on ports the operating system picks."""
+    """meshcat's bridge bound to one host, on ports the operating system picks.
 
-    def __init__(self, host: str = "127.0.0.1", port: int = 0) -> None:
+    meshcat's own __init__ listens on every interface and on fixed ports, so it is not called:
+    this sets the same attributes itself (tests/integration/sim/test_viewer_server.py fails the day
+    meshcat's __init__ sets one more).
+    """
+
+    def __init__(
+        self, host: str = "127.0.0.1", port: int = 0, origins: Iterable[str] = ()
+    ) -> None:
         self.host = host
+        self.origins = tuple(origins)
         self.websocket_pool = set()
         self.app = tornado.web.Application(
             [
@@ -84,7 +114,7 @@ class LocalBridge(ZMQWebSocketBridge):
                     StaticFileHandlerNoCache,
                     {"path": VIEWER_ROOT, "default_filename": VIEWER_HTML},
                 ),
-                (r"/", _AnyOriginWebSocket, {"bridge": self}),
+                (r"/", _SameOriginWebSocket, {"bridge": self}),
             ]
         )
         self.ioloop = tornado.ioloop.IOLoop.current()
@@ -103,8 +133,14 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description="meshcat server for the course (127.0.0.1)")
     parser.add_argument("--host", default="127.0.0.1")
     parser.add_argument("--port", type=int, default=0, help="web port (0: a free one)")
+    parser.add_argument(
+        "--origin",
+        action="append",
+        default=os.environ.get(ORIGINS_ENV, "").split(","),
+        help=f"another origin whose pages may connect (repeatable; also ${ORIGINS_ENV})",
+    )
     args = parser.parse_args(argv)
-    bridge = LocalBridge(args.host, args.port)
+    bridge = LocalBridge(args.host, args.port, origins=args.origin)
     print(f"zmq_url={bridge.zmq_url}", flush=True)
     print(f"web_url={bridge.web_url}", flush=True)
 

@@ -7,9 +7,10 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from browser_path import INSTALL_HINT, find_chromium
 from lab_server import ARTIFACTS, LabServer
 
-CHROMIUM = Path("/usr/bin/chromium")
+CHROMIUM = find_chromium()
 FLAGS = [
     "--no-sandbox",
     "--disable-gpu",
@@ -24,12 +25,9 @@ FLAGS = [
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     """Skip browser tests, saying how to enable them, where chromium is missing."""
-    if CHROMIUM.exists():
+    if CHROMIUM is not None:
         return
-    skip = pytest.mark.skip(
-        reason="browser tests need Debian's chromium at /usr/bin/chromium: "
-        "`sudo apt-get install chromium` enables them (.ci/run installs it)"
-    )
+    skip = pytest.mark.skip(reason=INSTALL_HINT)
     for item in items:
         if "browser" in item.keywords:
             item.add_marker(skip)
@@ -41,9 +39,7 @@ def browser() -> Iterator[object]:
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(
-            executable_path=str(CHROMIUM), headless=True, args=FLAGS
-        )
+        chromium = playwright.chromium.launch(executable_path=CHROMIUM, headless=True, args=FLAGS)
         try:
             yield chromium
         finally:

@@ -1,4 +1,5 @@
-"""Every lesson notebook stays thin: prose plus a few short calls into course_lib (STYLE.md)."""
+"""Every lesson notebook stays thin: prose plus a few short calls into course_lib (no def,
+class, `import rclpy` or sleeps in lesson cells)."""
 
 from __future__ import annotations
 
