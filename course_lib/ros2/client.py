@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import threading
 import time
 from collections.abc import Callable, Sequence
@@ -16,6 +17,7 @@ from rclpy.action.graph import (
 )
 from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
 
+from .discovery import UNKNOWN_NODE, GraphView, profile_timing, wait_settled
 from .results import Descriptor, NodeInfo, NodeName, ParamRange, SetResult, TopicInfo
 from .values import ParamValue
 
@@ -24,8 +26,6 @@ __all__ = ["DISCOVERY_WAIT_S", "RosClient", "ServiceCallError"]
 # How long a node-targeted command looks for a node the graph does not show yet. The real
 # tools wait 1 s (`--timeout`) and so miss freshly started nodes; the course waits longer.
 DISCOVERY_WAIT_S = 2.5
-# A client node younger than this may not have met everyone yet: list verbs wait for it.
-GRAPH_SETTLE_S = 1.0
 # Until this age, a node may still be unknown to a fresh client (Fast DDS re-announces every
 # 3 s by default), so node lookups wait at least until the client is this old.
 YOUNG_CLIENT_S = 4.0
@@ -121,19 +121,49 @@ def wait_until(predicate: Callable[[], bool], timeout: float) -> bool:
 class RosClient:
     """Graph queries and parameter calls over one long-lived rclpy node (thread-safe)."""
 
-    def __init__(self, node: Any, wait_future: Callable[[Any, float], Any]) -> None:
+    def __init__(
+        self,
+        node: Any,
+        wait_future: Callable[[Any, float], Any],
+        *,
+        born: float | None = None,
+    ) -> None:
         self.node = node
         self._wait_future = wait_future
         self._clients: dict[tuple[str, str], Any] = {}
         self._lock = threading.Lock()
-        self._born = time.monotonic()
+        self._born = time.monotonic() if born is None else born
+        # This process's participant reads the course's Fast DDS profile from its environment.
+        self._timing = profile_timing(os.environ.get("FASTRTPS_DEFAULT_PROFILES_FILE"))
 
     # -- graph ---------------------------------------------------------------------------
-    def settle(self) -> None:
-        """Give a young client node time to discover the graph (free once it is warm)."""
-        remaining = GRAPH_SETTLE_S - (time.monotonic() - self._born)
-        if remaining > 0:
-            time.sleep(remaining)
+    def settle(self, *, min_age_s: float = 0.0) -> None:
+        """Wait until this client has discovered the whole graph (at once when it is warm).
+
+        `min_age_s` is `--spin-time`: a client younger than that waits until it is that old.
+        """
+        wait_settled(self.graph_view, born=self._born, timing=self._timing, min_age_s=min_age_s)
+
+    def graph_view(self) -> GraphView:
+        """Return the node and topic names seen, and how many endpoints lack their node."""
+        node = self.node
+        topics = [name for name, _types in node.get_topic_names_and_types()]
+        unknown = sum(
+            info.node_name == UNKNOWN_NODE
+            for name in topics
+            for infos in (
+                node.get_publishers_info_by_topic(name),
+                node.get_subscriptions_info_by_topic(name),
+            )
+            for info in infos
+        )
+        nodes = frozenset(n.full_name for n in self.node_names(include_hidden=True))
+        return GraphView(nodes, frozenset(topics), unknown)
+
+    @property
+    def uses_sim_time(self) -> bool:
+        """Return whether this client's node runs on simulation time (`--use-sim-time`)."""
+        return bool(self.node.get_parameter("use_sim_time").value)
 
     def node_names(self, *, include_hidden: bool = False) -> list[NodeName]:
         """Return the nodes the graph shows (hidden ones only if asked)."""

@@ -40,7 +40,7 @@ class Context:
 
 
 def _handler(command: str, verb: str | None) -> Callable[[argparse.Namespace, Context], Any]:
-    from . import pkg, topics, verbs
+    from . import daemon_verbs, pkg, topics, verbs
 
     table: dict[tuple[str, str | None], Callable[[argparse.Namespace, Context], Any]] = {
         ("node", "list"): verbs.node_list,
@@ -58,6 +58,9 @@ def _handler(command: str, verb: str | None) -> Callable[[argparse.Namespace, Co
         ("pkg", "executables"): pkg.pkg_executables,
         ("pkg", "prefix"): pkg.pkg_prefix,
         ("run", None): pkg.run,
+        ("daemon", "start"): daemon_verbs.daemon_start,
+        ("daemon", "status"): daemon_verbs.daemon_status,
+        ("daemon", "stop"): daemon_verbs.daemon_stop,
     }
     found = table.get((command, verb))
     if found is None:
@@ -69,7 +72,7 @@ def _not_available(args: argparse.Namespace, ctx: Context) -> str:
     words = " ".join(w for w in (args._command, getattr(args, "_verb", None)) if w)
     return (
         f"`ros2 {words}` is not part of this course's ros2 commands "
-        "(it has: node, topic list|echo|hz, param, pkg executables|prefix, run, launch)."
+        "(it has: daemon, node, topic list|echo|hz, param, pkg executables|prefix, run, launch)."
     )
 
 

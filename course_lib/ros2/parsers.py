@@ -81,6 +81,11 @@ class Spec:
     leading: Callable[[argparse.ArgumentParser], None] | None = None
 
 
+_DAEMON = {
+    "start": "Start the daemon if it isn't running",
+    "status": "Output the status of the daemon",
+    "stop": "Stop the daemon if it is running",
+}
 _NODE = {"info": "Output information about a node", "list": "Output a list of available nodes"}
 _PARAM = {
     "delete": "Delete parameter",
@@ -121,7 +126,7 @@ def _prefixed(prefix: str, verbs: dict[str, str]) -> dict[str, Spec]:
 COMMANDS: dict[str, Spec] = {
     "action": Spec("Various action related sub-commands"),
     "component": Spec("Various component related sub-commands"),
-    "daemon": Spec("Various daemon related sub-commands"),
+    "daemon": Spec("Various daemon related sub-commands", verbs=_prefixed("daemon", _DAEMON)),
     "doctor": Spec("Check ROS setup and other potential issues"),
     "extension_points": Spec("List extension points"),
     "extensions": Spec("List extensions"),
