@@ -17,16 +17,18 @@ _DAEMON_COMMANDS = {"node", "param", "topic"}
 
 
 def _terminal_env(domain: str | None) -> dict[str, str]:
+    """Return the caller's environment with the course's settings and workspace underlaid."""
+    from course_lib.ament import workspace_env
     from course_lib.session import session_env
 
-    return session_env(int(domain), os.environ) if domain else dict(os.environ)
+    return session_env(int(domain), os.environ) if domain else workspace_env(os.environ)
 
 
 def _local(argv: list[str], domain: str | None, *, direct: bool = False) -> int:
     """Run the command in this process, printing as it goes (on a node of its own if direct)."""
     import shutil
 
-    from course_lib.ros2.commands import Context, execute
+    from course_lib.ros2.commands import Context, command_of, execute
     from course_lib.ros2.console import StreamingConsole
 
     def write(stream: str, text: str) -> None:
@@ -36,6 +38,8 @@ def _local(argv: list[str], domain: str | None, *, direct: bool = False) -> int:
 
     console = StreamingConsole(write, width=shutil.get_terminal_size().columns)
     env = _terminal_env(domain)
+    if command_of(argv) == "launch":  # launch resolves packages through this process's env
+        os.environ.update(env)
     factory = _direct_client(argv, env) if direct else _in_process_client
     ctx = Context(console, factory, cwd=os.getcwd(), env=env)
     return execute(argv, ctx)
