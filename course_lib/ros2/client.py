@@ -17,7 +17,14 @@ from rclpy.action.graph import (
 )
 from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
 
-from .discovery import UNKNOWN_NODE, GraphView, profile_timing, wait_settled
+from .discovery import (
+    UNKNOWN_NODE,
+    GraphView,
+    participant_prefix,
+    profile_timing,
+    read_bound_participants,
+    wait_settled,
+)
 from .results import Descriptor, NodeInfo, NodeName, ParamRange, SetResult, TopicInfo
 from .values import ParamValue
 
@@ -135,6 +142,7 @@ class RosClient:
         self._born = time.monotonic() if born is None else born
         # This process's participant reads the course's Fast DDS profile from its environment.
         self._timing = profile_timing(os.environ.get("FASTRTPS_DEFAULT_PROFILES_FILE"))
+        self._domain_id = node.context.get_domain_id()
 
     # -- graph ---------------------------------------------------------------------------
     def settle(self, *, min_age_s: float = 0.0) -> None:
@@ -145,20 +153,26 @@ class RosClient:
         wait_settled(self.graph_view, born=self._born, timing=self._timing, min_age_s=min_age_s)
 
     def graph_view(self) -> GraphView:
-        """Return the node and topic names seen, and how many endpoints lack their node."""
+        """Return the node and topic names seen, and what is known to be missing from them."""
         node = self.node
         topics = [name for name, _types in node.get_topic_names_and_types()]
-        unknown = sum(
-            info.node_name == UNKNOWN_NODE
+        endpoints = [
+            info
             for name in topics
             for infos in (
                 node.get_publishers_info_by_topic(name),
                 node.get_subscriptions_info_by_topic(name),
             )
             for info in infos
-        )
+        ]
+        unknown = sum(info.node_name == UNKNOWN_NODE for info in endpoints)
+        bound = read_bound_participants(self._domain_id)
+        missing = None
+        if bound is not None:
+            seen = {participant_prefix(info.endpoint_gid) for info in endpoints}
+            missing = max(0, bound - len(seen))
         nodes = frozenset(n.full_name for n in self.node_names(include_hidden=True))
-        return GraphView(nodes, frozenset(topics), unknown)
+        return GraphView(nodes, frozenset(topics), unknown, missing)
 
     @property
     def uses_sim_time(self) -> bool:

@@ -1,19 +1,23 @@
-"""When a client node's view of the ROS graph is complete enough to list it (pure).
+"""When a client node's view of the ROS graph is complete enough to list it.
 
-A fresh DDS participant cannot know how many others exist: it learns of each one from its
-announcements. The course's Fast DDS profile (course_lib/dds/fastdds_profile.xml) makes
-every course process announce itself every `leaseAnnouncement` period, and a participant
-answers a newcomer's announcement at once, so a client node older than one announcement
-period plus the time to exchange endpoints has met every course process. A node whose
-endpoints are known but whose name is not (`_NODE_NAME_UNKNOWN_`: its `ros_discovery_info`
-has not arrived) is waited for, bounded by the slowest announcement period Fast DDS uses
-by default, so nodes started without the course's profile are listed too.
+A fresh DDS participant learns of the others from their announcements, so it cannot tell
+from DDS alone whether it has met everyone. On this host it can count them, though: every
+participant of a domain binds its own metatraffic port, `7410 + 250 * domain + 2 * i`
+(Fast DDS's well-known ports), which /proc/net/udp lists for any user. A young client waits
+until it has seen endpoints of as many participants as are bound, every endpoint's node is
+known by name (not `_NODE_NAME_UNKNOWN_`: that node's `ros_discovery_info` has not arrived),
+and the graph stayed the same for a moment. Without /proc it falls back on time: the
+course's Fast DDS profile makes every course process announce itself every
+`leaseAnnouncement` period, and participants answer a newcomer's announcement at once.
+Every wait is bounded by the slowest announcement period Fast DDS uses by default, so
+nodes started without the course's profile are listed too and a stuck process costs at
+most that. The counting and the rules are pure; reading /proc is one small function.
 """
 
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -66,11 +70,42 @@ class DiscoveryTiming:
 
 @dataclass(frozen=True)
 class GraphView:
-    """What a client sees: node and topic names, and how many endpoints lack a node name."""
+    """What a client sees: node and topic names, and what it knows it has not seen yet."""
 
     nodes: frozenset[str]
     topics: frozenset[str]
-    unknown_endpoints: int = 0
+    unknown_endpoints: int = 0  # endpoints whose node's name has not arrived
+    missing_participants: int | None = None  # bound on this host, not seen; None: unknown
+
+
+def participant_prefix(endpoint_gid: Sequence[int]) -> tuple[int, ...]:
+    """Return the participant part (GUID prefix) of a DDS endpoint's GID."""
+    return tuple(endpoint_gid[:12])
+
+
+def bound_participants(domain_id: int, udp_tables: Sequence[str]) -> int:
+    """Count the participants of `domain_id` bound on this host, from /proc/net/udp text."""
+    base = 7400 + 250 * domain_id
+    ports = set()
+    for table in udp_tables:
+        for line in table.splitlines()[1:]:
+            fields = line.split()
+            if len(fields) > 1 and ":" in fields[1]:
+                offset = int(fields[1].rsplit(":", 1)[1], 16) - base
+                if 10 <= offset < 250 and offset % 2 == 0:
+                    ports.add(offset)
+    return len(ports)
+
+
+def read_bound_participants(domain_id: int) -> int | None:
+    """Return how many participants of `domain_id` this host has (None without /proc)."""
+    tables = []
+    for name in ("/proc/net/udp", "/proc/net/udp6"):
+        try:
+            tables.append(Path(name).read_text())
+        except OSError:
+            continue
+    return bound_participants(domain_id, tables) if tables else None
 
 
 def _seconds(element: Any) -> float | None:
@@ -128,21 +163,24 @@ def wait_settled(
 ) -> GraphView:
     """Wait until a client node born at `born` sees the whole graph; return that view.
 
-    A warm client with no half-known node answers at once. A young one waits until it is
-    `floor_s` (or `min_age_s`) old and the graph stayed the same for `quiet_s`. Either
-    waits at most `unknown_wait_s` more for nodes whose endpoints came before their names.
+    A warm client with no half-known node answers at once. A young one that can count the
+    host's participants waits until it has seen them all and the graph stayed the same for
+    `quiet_s`; one that cannot waits until it is `floor_s` old (and quiet). `min_age_s`
+    (`--spin-time`) is a minimum age. Nodes known by their endpoints only are waited for,
+    and participants not seen yet while the client is young: at most `unknown_wait_s`.
     """
     start = clock()
-    floor = max(timing.floor_s, min_age_s)
     current = view()
+    counting = current.missing_participants is not None
+    floor = max(0.0 if counting else timing.floor_s, min_age_s)
     changed = start
     while True:
         now = clock()
         age = now - born
-        young_done = age >= floor and (
-            age >= floor + timing.quiet_s or now - changed >= timing.quiet_s
-        )
-        if young_done and not current.unknown_endpoints:
+        quiet = age >= floor + timing.quiet_s or now - changed >= timing.quiet_s
+        young = age < timing.unknown_wait_s
+        missing = bool(current.missing_participants) and young
+        if age >= floor and quiet and not current.unknown_endpoints and not missing:
             return current
         if age >= floor and now - start >= timing.unknown_wait_s:
             return current

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 
 import pytest
 
@@ -12,6 +13,8 @@ from course_lib.ros2.discovery import (
     DEFAULT_TIMING,
     DiscoveryTiming,
     GraphView,
+    bound_participants,
+    participant_prefix,
     profile_timing,
     requested_spin_time,
     timing_from_profile,
@@ -122,3 +125,43 @@ def test_spin_time_typed_or_left_at_its_default() -> None:
     finally:
         parsers.output_sink.reset(token)
     assert requested_spin_time(argparse.Namespace()) == 0.0
+
+
+UDP = """  sl  local_address rem_address   st tx_queue rx_queue tr tm->when retrnsmt   uid
+   0: 00000000:6A18 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+   1: 00000000:6A19 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+   2: 00000000:6A1A 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+   3: 00000000:6A1B 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+   4: 00000000:6A0E 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+   5: 00000000:1CE8 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+"""
+
+
+def test_participants_are_counted_by_their_metatraffic_ports() -> None:
+    # 0x6A18 = 27160 = 7400 + 250 * 79 + 10: participants 0 and 1 of domain 79 (metatraffic
+    # and user ports); 0x6A0E is domain 79's multicast port, 0x1CE8 domain 0's.
+    assert bound_participants(79, [UDP]) == 2
+    assert bound_participants(79, [UDP, UDP]) == 2
+    assert bound_participants(78, [UDP]) == 0
+    assert participant_prefix(list(range(16))) == tuple(range(12))
+
+
+def test_a_counting_client_answers_once_it_met_every_participant() -> None:
+    graph = Graph(
+        {0.0: replace(EMPTY, missing_participants=1), 0.6: replace(NODE, missing_participants=0)}
+    )
+    assert graph.settle(born=0.0).nodes == NODE.nodes
+    assert 0.6 <= graph.now <= 0.72  # past the time-based floor: it waited for the node
+    alone = Graph({0.0: replace(EMPTY, missing_participants=0)})
+    alone.settle(born=0.0)
+    assert alone.now == pytest.approx(0.1, abs=0.02)  # nothing else runs: quiet is enough
+
+
+def test_an_unseen_participant_holds_only_a_young_client_and_bounded() -> None:
+    stuck = replace(NODE, missing_participants=1)  # e.g. a suspended process
+    young = Graph({0.0: stuck})
+    young.settle(born=0.0)
+    assert young.now == pytest.approx(3.5, abs=0.02)
+    warm = Graph({0.0: stuck})
+    warm.settle(born=-60.0)
+    assert warm.now == 0.0
