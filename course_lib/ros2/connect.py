@@ -68,11 +68,18 @@ def daemon_argv() -> list[str]:
 
 
 def _owner_pid() -> int:
-    """Return who owns a daemon this command starts: its lab, else the shell that ran it."""
+    """Return who owns a daemon this command starts: its lab, else the terminal's shell.
+
+    The shell is the session leader (so `time ros2 ...` or a script in that terminal does
+    not own it), or the parent process when this command leads its own session.
+    """
     from ..lab import owning_lab
 
     lab = owning_lab(os.getpid())
-    return os.getppid() if lab is None else lab
+    if lab is not None:
+        return lab
+    leader = os.getsid(0)
+    return leader if leader not in (0, os.getpid()) and pid_alive(leader) else os.getppid()
 
 
 def spawn_detached(env: Mapping[str, str]) -> None:
