@@ -17,10 +17,11 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from daemons import daemon_pids
 from ros2_golden import GOLDEN, golden_cases
 
 from course_lib.domain import lease_domain
-from course_lib.processes import ChildProcess, process_environ, spawn
+from course_lib.processes import ChildProcess, spawn
 from course_lib.ros2.client import wait_until
 from course_lib.ros2.connect import daemon_running
 from course_lib.session import session_env
@@ -66,22 +67,6 @@ def _ros2(env: dict[str, str], command: str) -> subprocess.CompletedProcess[str]
     )
 
 
-def _daemon_pids(domain: str) -> list[int]:
-    """Return the pids of the daemons serving `domain` (whoever started them)."""
-    pids = []
-    for entry in Path("/proc").iterdir():
-        if not entry.name.isdigit():
-            continue
-        try:
-            argv = (entry / "cmdline").read_bytes().split(b"\0")
-        except OSError:
-            continue
-        env = process_environ(int(entry.name)) if b"course_lib.ros2.daemon" in argv else {}
-        if env.get("ROS_DOMAIN_ID") == domain:
-            pids.append(int(entry.name))
-    return pids
-
-
 def _first_calls(env: dict[str, str], extra: str = "") -> dict[str, tuple[str, str, int]]:
     """Start the four listing verbs at once; return each one's stdout, stderr, exit code."""
     procs = {
@@ -106,9 +91,9 @@ def _misses(results: dict[str, tuple[str, str, int]]) -> list[str]:
 
 
 def _kill_daemons(domain: str) -> None:
-    for pid in _daemon_pids(domain):
+    for pid in daemon_pids(domain):
         os.kill(pid, signal.SIGKILL)
-    assert wait_until(lambda: not _daemon_pids(domain), 10)
+    assert wait_until(lambda: not daemon_pids(domain), 10)
 
 
 @pytest.mark.parametrize("state", ["killed", "stopped", "no-daemon"])
@@ -120,13 +105,13 @@ def test_first_call_lists_the_running_node(domain_env: dict[str, str], state: st
             _kill_daemons(domain)
         else:
             assert _ros2(domain_env, "daemon stop").returncode == 0
-            assert not _daemon_pids(domain)
+            assert not daemon_pids(domain)
         results = _first_calls(domain_env, " --no-daemon" if state == "no-daemon" else "")
         misses += [f"round {round_}: {miss}" for miss in _misses(results)]
         if state == "no-daemon":
-            assert not daemon_running(domain) and not _daemon_pids(domain)
+            assert not daemon_running(domain) and not daemon_pids(domain)
         else:
-            assert len(_daemon_pids(domain)) == 1  # the racing first calls share one daemon
+            assert len(daemon_pids(domain)) == 1  # the racing first calls share one daemon
     assert not misses, "\n".join(misses)
 
 
