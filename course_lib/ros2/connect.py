@@ -18,11 +18,12 @@ from pathlib import Path
 from typing import TextIO
 
 from ..paths import runtime_dir
-from ..processes import OWNER_ENV, owner_tag, pid_alive
+from ..processes import OWNER_ENV, owner_tag, pid_alive, process_environ
 
 __all__ = [
     "DaemonUnavailable",
     "daemon_lock",
+    "daemon_pids",
     "daemon_running",
     "daemon_socket",
     "request",
@@ -190,3 +191,17 @@ def request(
         reader.close()
         sock.close()
     raise DaemonUnavailable("the daemon closed the connection")
+
+
+def daemon_pids(domain_id: int | str) -> list[int]:
+    """Return the pids of this host's daemon processes serving `domain_id` (whoever owns them)."""
+    pids = []
+    for entry in Path("/proc").iterdir():
+        try:
+            argv = (entry / "cmdline").read_bytes().split(b"\0") if entry.name.isdigit() else []
+        except OSError:
+            continue
+        is_daemon = b"course_lib.ros2.daemon" in argv
+        if is_daemon and process_environ(int(entry.name)).get("ROS_DOMAIN_ID") == str(domain_id):
+            pids.append(int(entry.name))
+    return pids

@@ -11,11 +11,10 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from daemons import daemon_pids
 
 from course_lib.domain import lease_domain
 from course_lib.ros2 import api
-from course_lib.ros2.connect import daemon_running
+from course_lib.ros2.connect import daemon_pids, daemon_running
 from course_lib.session import session_env
 
 pytestmark = pytest.mark.ros

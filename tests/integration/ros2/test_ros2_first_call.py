@@ -17,13 +17,12 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from daemons import daemon_pids
 from ros2_golden import GOLDEN, golden_cases
 
 from course_lib.domain import lease_domain
 from course_lib.processes import ChildProcess, spawn
 from course_lib.ros2.client import wait_until
-from course_lib.ros2.connect import daemon_running
+from course_lib.ros2.connect import daemon_pids, daemon_running
 from course_lib.session import session_env
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
