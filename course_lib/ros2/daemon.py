@@ -13,6 +13,7 @@ import contextlib
 import fcntl
 import json
 import os
+import select
 import socket
 import threading
 import time
@@ -133,24 +134,51 @@ def _owner_alive(tag: str | None) -> bool:
     return pid.isdigit() and owner_tag(int(pid)) == tag
 
 
+def _watch(owner: str | None) -> int | None:
+    """Return a pidfd that becomes readable when the owner exits (None: poll instead)."""
+    pid = owner.partition(":")[0] if owner else ""
+    if not pid.isdigit() or not hasattr(os, "pidfd_open"):
+        return None
+    try:
+        fd = os.pidfd_open(int(pid))
+    except OSError:
+        return None
+    if not _owner_alive(owner):  # the pid was reused before we opened it
+        os.close(fd)
+        return None
+    return fd
+
+
 def _serve_forever(
     server: socket.socket, client: Any, *, idle_s: float | None, owner: str | None
 ) -> None:
     stop = threading.Event()
-    server.settimeout(_ACCEPT_TICK_S)
+    server.setblocking(False)
+    watch = _watch(owner)
+    waited = [server] + ([watch] if watch is not None else [])
     last = time.monotonic()
-    while not stop.is_set() and _owner_alive(owner):
-        if idle_s is not None and time.monotonic() - last >= idle_s:
-            return
-        try:
-            conn, _ = server.accept()
-        except TimeoutError:
-            continue
-        except OSError:
-            return  # woken by a shutdown request
-        last = time.monotonic()
-        handler = _Connection(conn, lambda: client, stop, server)
-        threading.Thread(target=handler.handle, daemon=True).start()
+    try:
+        while not stop.is_set() and _owner_alive(owner):
+            if idle_s is not None and time.monotonic() - last >= idle_s:
+                return
+            ready, _, _ = select.select(waited, [], [], _ACCEPT_TICK_S)
+            if watch is not None and watch in ready:
+                return  # the owner exited: the lab, shell or process we belong to
+            if server not in ready:
+                continue
+            try:
+                conn, _ = server.accept()
+            except BlockingIOError:
+                continue
+            except OSError:
+                return  # woken by a shutdown request
+            conn.setblocking(True)
+            last = time.monotonic()
+            handler = _Connection(conn, lambda: client, stop, server)
+            threading.Thread(target=handler.handle, daemon=True).start()
+    finally:
+        if watch is not None:
+            os.close(watch)
 
 
 def serve(*, idle_s: float | None = None) -> int:
