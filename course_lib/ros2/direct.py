@@ -15,7 +15,6 @@ from typing import Any
 __all__ = ["DirectNode", "cli_node_name", "daemon_node_name"]
 
 NODE_NAME_PREFIX = "_ros2cli"
-PROFILE_ENV = "FASTRTPS_DEFAULT_PROFILES_FILE"
 
 
 def cli_node_name(pid: int | None = None) -> str:
