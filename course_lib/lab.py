@@ -7,6 +7,7 @@ import os
 import shutil
 import signal
 from collections.abc import Sequence
+from pathlib import Path
 from typing import Any
 
 from .domain import lease_domain
@@ -17,7 +18,14 @@ from .processes import ChildProcess, pid_alive, spawn
 from .ros2 import start_daemon
 from .session import session_env
 
-__all__ = ["FIRST_LESSON", "lab_argv", "run_lab", "running_lab_domain"]
+__all__ = [
+    "FIRST_LESSON",
+    "lab_argv",
+    "lab_marker",
+    "owning_lab",
+    "run_lab",
+    "running_lab_domain",
+]
 
 FIRST_LESSON = "notebooks/01_setup_check.ipynb"
 
@@ -38,6 +46,31 @@ def lab_argv(extra: Sequence[str] = ()) -> list[str]:
         *extra,
         first,
     ]
+
+
+def lab_marker(pid: int) -> Path:
+    """Return the file a running lab (process `pid`) keeps its domain in."""
+    return runtime_dir() / f"lab-{pid}.domain"
+
+
+def _parent(pid: int) -> int:
+    try:
+        return int(Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[1])
+    except (OSError, IndexError, ValueError):
+        return 0
+
+
+def owning_lab(pid: int) -> int | None:
+    """Return the pid of the running lab that process `pid` descends from, if any.
+
+    A JupyterLab terminal's shell, a kernel and the commands they run all descend from the
+    `make lab` process, whose marker file names its pid.
+    """
+    while pid > 1:
+        if lab_marker(pid).exists():
+            return pid
+        pid = _parent(pid)
+    return None
 
 
 def running_lab_domain() -> str | None:
@@ -74,7 +107,7 @@ def run_lab(extra: Sequence[str] = ()) -> int:
     if note:
         print(note)
     lease = lease_domain()
-    marker = runtime_dir() / f"lab-{os.getpid()}.domain"
+    marker = lab_marker(os.getpid())
     marker.write_text(str(lease.domain_id))
     env = session_env(lease.domain_id)
     env["COURSE_LAB"] = "1"

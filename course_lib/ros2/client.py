@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import threading
 import time
 from collections.abc import Callable, Sequence
@@ -16,6 +17,14 @@ from rclpy.action.graph import (
 )
 from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
 
+from .discovery import (
+    UNKNOWN_NODE,
+    GraphView,
+    participant_prefix,
+    profile_timing,
+    read_bound_participants,
+    wait_settled,
+)
 from .results import Descriptor, NodeInfo, NodeName, ParamRange, SetResult, TopicInfo
 from .values import ParamValue
 
@@ -24,10 +33,6 @@ __all__ = ["DISCOVERY_WAIT_S", "RosClient", "ServiceCallError"]
 # How long a node-targeted command looks for a node the graph does not show yet. The real
 # tools wait 1 s (`--timeout`) and so miss freshly started nodes; the course waits longer.
 DISCOVERY_WAIT_S = 2.5
-# A client node younger than this may not have met everyone yet: list verbs wait (at most
-# until it is this old) for its view of the graph to stop changing for GRAPH_QUIET_S.
-GRAPH_SETTLE_S = 1.0
-GRAPH_QUIET_S = 0.3
 # Until this age, a node may still be unknown to a fresh client (Fast DDS re-announces every
 # 3 s by default), so node lookups wait at least until the client is this old.
 YOUNG_CLIENT_S = 4.0
@@ -125,42 +130,58 @@ def wait_until(predicate: Callable[[], bool], timeout: float) -> bool:
 class RosClient:
     """Graph queries and parameter calls over one long-lived rclpy node (thread-safe)."""
 
-    def __init__(self, node: Any, wait_future: Callable[[Any, float], Any]) -> None:
+    def __init__(
+        self,
+        node: Any,
+        wait_future: Callable[[Any, float], Any],
+        *,
+        born: float | None = None,
+    ) -> None:
         self.node = node
         self._wait_future = wait_future
         self._clients: dict[tuple[str, str], Any] = {}
         # Per client: the server reply writers whose path to our reply reader a probe proved.
         self._proven: dict[tuple[str, str], frozenset[bytes]] = {}
         self._lock = threading.Lock()
-        self._born = time.monotonic()
+        self._born = time.monotonic() if born is None else born
+        # This process's participant reads the course's Fast DDS profile from its environment.
+        self._timing = profile_timing(os.environ.get("FASTRTPS_DEFAULT_PROFILES_FILE"))
+        self._domain_id = node.context.get_domain_id()
 
     # -- graph ---------------------------------------------------------------------------
-    def settle(self, max_wait: float | None = None) -> None:
-        """Wait until a young client's view of the graph stops changing (free once warm).
+    def settle(self, *, min_age_s: float = 0.0) -> None:
+        """Wait until this client has discovered the whole graph (at once when it is warm).
 
-        Discovery arrives in bursts: the graph counts as settled once its nodes and topics
-        stayed the same for GRAPH_QUIET_S, or when the client is GRAPH_SETTLE_S old (or
-        `max_wait` passed), whichever comes first.
+        `min_age_s` is `--spin-time`: a client younger than that waits until it is that old.
         """
-        remaining = GRAPH_SETTLE_S - (time.monotonic() - self._born)
-        if max_wait is not None:
-            remaining = min(remaining, max_wait)
-        if remaining <= 0:
-            return
-        last = [self._graph_signature(), time.monotonic()]
+        wait_settled(self.graph_view, born=self._born, timing=self._timing, min_age_s=min_age_s)
 
-        def quiet() -> bool:
-            now, signature = time.monotonic(), self._graph_signature()
-            if signature != last[0]:
-                last[:] = [signature, now]
-            return now - last[1] >= GRAPH_QUIET_S
+    def graph_view(self) -> GraphView:
+        """Return the node and topic names seen, and what is known to be missing from them."""
+        node = self.node
+        topics = [name for name, _types in node.get_topic_names_and_types()]
+        endpoints = [
+            info
+            for name in topics
+            for infos in (
+                node.get_publishers_info_by_topic(name),
+                node.get_subscriptions_info_by_topic(name),
+            )
+            for info in infos
+        ]
+        unknown = sum(info.node_name == UNKNOWN_NODE for info in endpoints)
+        bound = read_bound_participants(self._domain_id)
+        missing = None
+        if bound is not None:
+            seen = {participant_prefix(info.endpoint_gid) for info in endpoints}
+            missing = max(0, bound - len(seen))
+        nodes = frozenset(n.full_name for n in self.node_names(include_hidden=True))
+        return GraphView(nodes, frozenset(topics), unknown, missing)
 
-        wait_until(quiet, remaining)
-
-    def _graph_signature(self) -> tuple:
-        nodes = tuple(sorted(self.node.get_node_names_and_namespaces()))
-        topics = tuple(sorted((n, tuple(t)) for n, t in self.node.get_topic_names_and_types()))
-        return nodes, topics
+    @property
+    def uses_sim_time(self) -> bool:
+        """Return whether this client's node runs on simulation time (`--use-sim-time`)."""
+        return bool(self.node.get_parameter("use_sim_time").value)
 
     def node_names(self, *, include_hidden: bool = False) -> list[NodeName]:
         """Return the nodes the graph shows (hidden ones only if asked)."""

@@ -2,13 +2,18 @@
 
 Like the real `ros2 daemon`, it keeps discovery going between commands, so a terminal
 `ros2 param get` costs one socket round trip instead of an rclpy start and a discovery wait.
+Its node is named as ros2cli's daemon node (`_ros2cli_daemon_<domain>_<hex>`). It stops on
+`ros2 daemon stop`, when its owner (the lab, the shell or the process that started it) is
+gone, and after its idle time.
 """
 
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import json
 import os
+import select
 import signal
 import socket
 import threading
@@ -16,12 +21,15 @@ import time
 from collections.abc import Mapping
 from typing import Any
 
-from ..processes import ChildProcess, spawn
+from ..processes import OWNER_ENV, ChildProcess, owner_tag, spawn
 from .commands import Context, execute
-from .connect import IDLE_ENV, daemon_argv, daemon_socket
+from .connect import IDLE_ENV, SHUTDOWN, daemon_argv, daemon_lock, daemon_socket
 from .console import StreamingConsole
 
 __all__ = ["serve", "start_daemon"]
+
+_ACCEPT_TICK_S = 0.5  # how soon the daemon notices that its owner is gone
+_CLAIM_WAIT_S = 10.0  # how long a new daemon waits for a stopping one to exit
 
 
 def start_daemon(env: Mapping[str, str]) -> ChildProcess:
@@ -34,10 +42,19 @@ def start_daemon(env: Mapping[str, str]) -> ChildProcess:
 class _Connection:
     """One client connection: a command in, framed output back, cancel on hang-up."""
 
-    def __init__(self, sock: socket.socket, client_factory: Any) -> None:
+    def __init__(
+        self, sock: socket.socket, client_factory: Any, stop: threading.Event, server: Any
+    ) -> None:
         self.sock = sock
         self.client_factory = client_factory
+        self.stop = stop
+        self.server = server
         self.lock = threading.Lock()
+
+    def wake(self) -> None:
+        """Wake the server's accept() so that it sees the stop request at once."""
+        with contextlib.suppress(OSError):
+            self.server.shutdown(socket.SHUT_RDWR)
 
     def send(self, frame: dict[str, Any]) -> None:
         data = json.dumps(frame).encode() + b"\n"
@@ -54,6 +71,11 @@ class _Connection:
         with contextlib.suppress(OSError, ValueError), self.sock:
             line = self.sock.makefile("r", encoding="utf-8").readline()
             request = json.loads(line)
+            if request.get("control") == SHUTDOWN:
+                self.send({"pid": os.getpid()})
+                self.stop.set()
+                self.wake()
+                return
 
             def write(stream: str, text: str) -> None:
                 try:
@@ -68,17 +90,36 @@ class _Connection:
             self.send({"exit": code})
 
 
-def _claim(path: str) -> socket.socket | None:
-    """Bind the domain's socket unless a live daemon already answers there."""
+def _answers(path: str) -> bool:
     probe = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     try:
         probe.connect(path)
-        return None  # someone serves this domain already
+        return True
     except OSError:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(path)
+        return False
     finally:
         probe.close()
+
+
+def _claim(domain: int) -> socket.socket | None:
+    """Bind the domain's socket, holding its lock for life; None if a daemon serves it.
+
+    A daemon that is shutting down still holds the lock: wait for it to go.
+    """
+    path = str(daemon_socket(domain))
+    fd = os.open(daemon_lock(domain), os.O_RDWR | os.O_CREAT, 0o600)  # inherited by no one
+    deadline = time.monotonic() + _CLAIM_WAIT_S
+    while True:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            break
+        except BlockingIOError:
+            if _answers(path) or time.monotonic() >= deadline:
+                os.close(fd)
+                return None
+            time.sleep(0.02)
+    with contextlib.suppress(FileNotFoundError):
+        os.unlink(path)
     server = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     server.bind(path)
     os.chmod(path, 0o600)
@@ -86,38 +127,92 @@ def _claim(path: str) -> socket.socket | None:
     return server
 
 
-def serve(*, idle_s: float | None = None) -> int:
-    """Serve commands for this process's ROS_DOMAIN_ID until killed (or idle for idle_s)."""
-    from ..session import get_session
-    from .client import RosClient
+def _owner_alive(tag: str | None) -> bool:
+    """Return whether the process named by an owner tag (`pid:start time`) still runs."""
+    if not tag:
+        return True
+    pid, _, _started = tag.partition(":")
+    return pid.isdigit() and owner_tag(int(pid)) == tag
 
-    stopping = threading.Event()
-    if threading.current_thread() is threading.main_thread():
-        # Ctrl-C stops it cleanly, even when started in the background (SIGINT ignored there).
-        signal.signal(signal.SIGINT, lambda *_: stopping.set())
-    domain = os.environ.get("ROS_DOMAIN_ID", "")
-    path = str(daemon_socket(domain))
-    server = _claim(path)
-    if server is None:
-        return 0
-    session = get_session(domain_id=int(domain)) if domain else get_session()
-    client = RosClient(session.node, session.wait_future)
-    server.settimeout(1.0)
+
+def _watch(owner: str | None) -> int | None:
+    """Return a pidfd that becomes readable when the owner exits (None: poll instead)."""
+    pid = owner.partition(":")[0] if owner else ""
+    if not pid.isdigit() or not hasattr(os, "pidfd_open"):
+        return None
+    try:
+        fd = os.pidfd_open(int(pid))
+    except OSError:
+        return None
+    if not _owner_alive(owner):  # the pid was reused before we opened it
+        os.close(fd)
+        return None
+    return fd
+
+
+def _serve_forever(
+    server: socket.socket,
+    client: Any,
+    *,
+    idle_s: float | None,
+    owner: str | None,
+    stop: threading.Event,
+) -> None:
+    server.setblocking(False)
+    watch = _watch(owner)
+    waited = [server] + ([watch] if watch is not None else [])
     last = time.monotonic()
     try:
-        while not stopping.is_set() and (idle_s is None or time.monotonic() - last < idle_s):
+        while not stop.is_set() and _owner_alive(owner):
+            if idle_s is not None and time.monotonic() - last >= idle_s:
+                return
+            ready, _, _ = select.select(waited, [], [], _ACCEPT_TICK_S)
+            if watch is not None and watch in ready:
+                return  # the owner exited: the lab, shell or process we belong to
+            if server not in ready:
+                continue
             try:
                 conn, _ = server.accept()
-            except TimeoutError:
+            except BlockingIOError:
                 continue
+            except OSError:
+                return  # woken by a shutdown request
+            conn.setblocking(True)
             last = time.monotonic()
-            handler = _Connection(conn, lambda: client)
+            handler = _Connection(conn, lambda: client, stop, server)
             threading.Thread(target=handler.handle, daemon=True).start()
     finally:
+        if watch is not None:
+            os.close(watch)
+
+
+def serve(*, idle_s: float | None = None) -> int:
+    """Serve commands for this process's ROS_DOMAIN_ID until stopped, orphaned or idle."""
+    from .direct import DirectNode, daemon_node_name
+
+    stop = threading.Event()
+    if threading.current_thread() is threading.main_thread():
+        # Ctrl-C stops it cleanly, even when started in the background (SIGINT ignored there).
+        signal.signal(signal.SIGINT, lambda *_: stop.set())
+    domain = int(os.environ.get("ROS_DOMAIN_ID") or 0)
+    server = _claim(domain)
+    if server is None:
+        return 0
+    path = str(daemon_socket(domain))
+    try:
+        direct = DirectNode(domain_id=domain, node_name=daemon_node_name(domain))
+    except BaseException:
         server.close()
+        os.unlink(path)
+        raise
+    try:
+        owner = os.environ.get(OWNER_ENV)
+        _serve_forever(server, direct.client(), idle_s=idle_s, owner=owner, stop=stop)
+    finally:
+        server.close()  # new commands now find no daemon; the lock is held until exit
         with contextlib.suppress(FileNotFoundError):
             os.unlink(path)
-        session.close()
+        direct.close()
     return 0
 
 

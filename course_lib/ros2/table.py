@@ -65,6 +65,23 @@ def _interface(name: str, doc: str) -> Verb:
 _A = "verb_args"
 _T = "topic_verbs:"
 COMMANDS: dict[str, Command] = {
+    "daemon": Command(
+        "Various daemon related sub-commands",
+        {
+            "start": Verb(
+                "Start the daemon if it isn't running",
+                "daemon_verbs:daemon_start",
+                f"{_A}:daemon_start",
+                graph=False,
+            ),
+            "status": Verb(
+                "Output the status of the daemon", "daemon_verbs:daemon_status", graph=False
+            ),
+            "stop": Verb(
+                "Stop the daemon if it is running", "daemon_verbs:daemon_stop", graph=False
+            ),
+        },
+    ),
     "interface": Command(
         "Show information about ROS interfaces",
         {
@@ -187,7 +204,6 @@ ELSEWHERE: dict[str, str] = {
     "try `ros2 service list`.",
     "bag": "The course records nothing; watch messages live with `ros2 topic echo <topic>`.",
     "component": "The course starts nodes as processes: use `ros2 run` or `ros2 launch`.",
-    "daemon": "The course starts and stops its own daemon for you.",
     "doctor": "Check the course's setup with `make doctor` (or `python -m course_lib doctor`).",
     "extension_points": "The course's ros2 has no extensions; `ros2 --help` lists its commands.",
     "extensions": "The course's ros2 has no extensions; `ros2 --help` lists its commands.",

@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import argparse
 
+from .discovery import DEFAULT_SPIN_TIME
+
 __all__ = [
+    "daemon_start",
     "node_info",
     "node_list",
     "param_delete",
@@ -48,7 +51,7 @@ def _direct(parser: Parser) -> None:
     parser.add_argument(
         "--spin-time",
         type=float,
-        default=0.5,
+        default=DEFAULT_SPIN_TIME,
         help="Spin time in seconds to wait for discovery (only applies when not using an "
         "already running daemon)",
     )
@@ -74,6 +77,11 @@ def _node_and_hidden(parser: Parser) -> None:
 
 def _timeout(parser: Parser) -> None:
     parser.add_argument("--timeout", metavar="N", type=int, default=1, help=_TIMEOUT_HELP)
+
+
+def daemon_start(parser: Parser) -> None:
+    """Arguments of `ros2 daemon start`."""
+    parser.add_argument("--debug", "-d", action="store_true", help="Print debug messages")
 
 
 def node_list(parser: Parser) -> None:

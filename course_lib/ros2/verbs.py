@@ -7,6 +7,7 @@ from typing import Any
 
 from . import render
 from .context import Context
+from .discovery import requested_spin_time
 from .paramfile import ParamFileError, read_param_file
 from .results import ParamListing, node_name_of
 from .values import NOT_SET, ParamValue, parse_value
@@ -32,6 +33,25 @@ def _absolute(name: str) -> str:
     return name if name.startswith("/") else "/" + name
 
 
+class SimTimeUnavailable(RuntimeError):
+    """`--use-sim-time` asked of a door whose shared node runs on wall time."""
+
+    cli_message = (
+        "--use-sim-time needs a node of this command's own: run the command in a terminal "
+        "(a JupyterLab terminal, or `!ros2 ...` in a cell); the cells' `%ros2` commands "
+        "share one node on wall time."
+    )
+
+
+def _settled(args: argparse.Namespace, ctx: Context) -> Any:
+    """Return the client once it has discovered the whole graph (`--spin-time` at least)."""
+    client = ctx.client
+    if getattr(args, "use_sim_time", False) and not client.uses_sim_time:
+        raise SimTimeUnavailable()
+    client.settle(min_age_s=requested_spin_time(args))
+    return client
+
+
 def _find_node(args: argparse.Namespace, ctx: Context) -> str | None:
     """Return the node's absolute name once the graph shows it, else None."""
     name = _absolute(args.node_name)
@@ -43,8 +63,7 @@ def _find_node(args: argparse.Namespace, ctx: Context) -> str | None:
 
 def node_list(args: argparse.Namespace, ctx: Context) -> int:
     """`ros2 node list [-a] [-c]`."""
-    ctx.client.settle()
-    names = ctx.client.node_names(include_hidden=args.all)
+    names = _settled(args, ctx).node_names(include_hidden=args.all)
     if not names and not args.count_nodes:
         return 0
     return ctx.console.emit(
@@ -54,8 +73,7 @@ def node_list(args: argparse.Namespace, ctx: Context) -> int:
 
 def node_info(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 node info <node>`."""
-    client = ctx.client
-    client.settle()
+    client = _settled(args, ctx)
 
     def count() -> int:
         names = client.node_names(include_hidden=args.include_hidden)
@@ -72,8 +90,7 @@ def node_info(args: argparse.Namespace, ctx: Context) -> Any:
 
 def topic_list(args: argparse.Namespace, ctx: Context) -> int:
     """`ros2 topic list [-t] [-c] [-v]`."""
-    client = ctx.client
-    client.settle()
+    client = _settled(args, ctx)
     topics = client.topics(include_hidden=args.include_hidden_topics)
     if args.count_topics:
         return ctx.console.emit(render.topic_list(topics, count_only=True))
@@ -109,8 +126,7 @@ def _listing(ctx: Context, node: Any, args: argparse.Namespace, wait: float) -> 
 
 def param_list(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 param list [node] [--filter R] [--param-prefixes P..] [--param-type]`."""
-    client = ctx.client
-    client.settle()
+    client = _settled(args, ctx)
     nodes = client.node_names(include_hidden=args.include_hidden_nodes)
     if args.node_name:
         name = _absolute(args.node_name)

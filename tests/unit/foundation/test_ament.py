@@ -40,6 +40,32 @@ def test_missing_package_and_executable_use_ros2_run_wording(prefix: Path) -> No
     assert "talker" in err.value.hint
 
 
+def _prefix_with(root: Path, package: str) -> Path:
+    (root / "share/ament_index/resource_index/packages").mkdir(parents=True)
+    (root / "share/ament_index/resource_index/packages" / package).touch()
+    return root
+
+
+def test_first_prefix_in_the_callers_order_wins(tmp_path: Path) -> None:
+    mine = _prefix_with(tmp_path / "mine", "demo")
+    theirs = _prefix_with(tmp_path / "theirs", "demo")
+    for order in ([mine, theirs], [theirs, mine]):
+        env = {"AMENT_PREFIX_PATH": ":".join(map(str, order))}
+        assert ament.package_prefix("demo", env) == order[0]
+        assert ament.list_packages(env) == {"demo": order[0]}
+
+
+def test_workspace_env_keeps_a_learners_workspace_before_the_course_one(tmp_path: Path) -> None:
+    course = str(ament.WORKSPACE_INSTALL_DIR)
+    mine = str(tmp_path / "my_ws/install")
+    sourced_after = ament.workspace_env({"AMENT_PREFIX_PATH": f"{mine}:{course}"})
+    assert sourced_after["AMENT_PREFIX_PATH"] == f"{mine}:{course}"
+    sourced_before = ament.workspace_env({"AMENT_PREFIX_PATH": f"{course}:{mine}"})
+    assert sourced_before["AMENT_PREFIX_PATH"] == f"{course}:{mine}"
+    without_course = ament.workspace_env({"AMENT_PREFIX_PATH": mine})
+    assert without_course["AMENT_PREFIX_PATH"] == f"{mine}:{course}"
+
+
 def test_workspace_env_overlays_the_course_workspace() -> None:
     env = ament.workspace_env({"PATH": "/usr/bin"})
     assert env["AMENT_PREFIX_PATH"].split(":")[0].endswith("rosject/install")
