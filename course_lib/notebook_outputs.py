@@ -79,7 +79,12 @@ def clean_notebook(nb: Any, old: Any | None, *, keep_live: bool = True) -> Any:
                 if output.get("output_type") == "execute_result":
                     output["execution_count"] = cell.execution_count
         cell.outputs = [_clean_output(o, rules) for o in cell.outputs]
-    scrub_live_outputs(nb)  # a stored 3D view or widget would only show an error reopened
+    if scrub_live_outputs(nb):  # a stored 3D view or widget would only show an error reopened
+        import nbformat
+
+        for cell in nb.cells:
+            if cell.cell_type == "code":
+                cell.outputs = [nbformat.from_dict(o) for o in cell.outputs]
     return nb
 
 

@@ -179,11 +179,21 @@ def _lesson_7(lesson: Any) -> list[Check]:
     ]
 
 
+def _written_in(lesson: Any, path: Any) -> bool:
+    """Return True if `path` was written since this lesson started (not by an earlier run)."""
+    try:
+        return path.stat().st_mtime >= lesson.started_at - 1.0  # file systems round mtimes
+    except OSError:
+        return False
+
+
 def _lesson_8(lesson: Any) -> list[Check]:
     from ..ros2 import api
 
     dump = lesson.learner_file(DUMP_NAME)
     try:
+        if not _written_in(lesson, dump):
+            raise OSError("written by an earlier run")
         text = dump.read_text(encoding="utf-8")
         value = yaml.safe_load(text)["/param_vel_node"]["ros__parameters"]["velocity"]
     except (OSError, yaml.YAMLError, KeyError, TypeError):
@@ -208,6 +218,8 @@ def _lesson_9(lesson: Any) -> list[Check]:
 
     path = lesson.learner_file("param_vel_node.yaml")
     try:
+        if not _written_in(lesson, path):
+            raise OSError("written by an earlier run")
         value = yaml.safe_load(path.read_text())["/param_vel_node"]["ros__parameters"]["velocity"]
     except (OSError, yaml.YAMLError, KeyError, TypeError):
         value = None

@@ -60,6 +60,8 @@ class Lesson:
         self.settings = settings
         self.started: dict[str, ChildProcess] = {}
         self.state: dict[str, Any] = {}
+        self.started_at = time.time()  # files older than this come from an earlier run
+        self.learner_dir = files.LEARNER_DIR  # notebooks/my_files/: the learner's, not git's
         self._world: Any = None
         self._lock = threading.Lock()
 
@@ -189,7 +191,7 @@ class Lesson:
 
     def learner_file(self, name: str) -> Path:
         """Return the path of a file the learner owns (in notebooks/my_files/, not in git)."""
-        return files.LEARNER_DIR / name
+        return self.learner_dir / name
 
     def ros2_to_file(self, command: str, path: str | os.PathLike[str]) -> files.Text:
         """Run `ros2 <command> > path` (stdout into the file, atomically); show the line."""

@@ -131,3 +131,35 @@ def test_lesson4_fails_for_a_node_that_declares_an_integer_and_a_slow_timer(tmp_
             **lesson.session.env,
             "AMENT_PREFIX_PATH": os.environ["AMENT_PREFIX_PATH"],
         }
+
+
+def test_lesson8_fails_for_a_dump_left_by_an_earlier_run(stop_nodes, tmp_path: Path) -> None:
+    from course_lib.lessons.checks import DUMP_NAME
+
+    lesson = start(8)
+    lesson.learner_dir = tmp_path  # never the learner's own my_files/
+    lesson.run("parameter_tests", "param_vel")
+    dump = lesson.learner_file(DUMP_NAME)
+    dump.parent.mkdir(parents=True, exist_ok=True)
+    dump.write_text(api.ros2("param dump /param_vel_node").stdout)
+    assert not _failed(lesson)
+    an_hour_ago = lesson.started_at - 3600
+    os.utime(dump, (an_hour_ago, an_hour_ago))
+    assert f"my_files/{DUMP_NAME} holds /param_vel_node's ros__parameters" in _failed(lesson)
+
+
+def test_lesson9_fails_for_a_params_file_left_by_an_earlier_run(tmp_path: Path) -> None:
+    lesson = start(9)
+    lesson.learner_dir = tmp_path
+    path = lesson.learner_file("param_vel_node.yaml")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("/param_vel_node:\n  ros__parameters:\n    velocity: 0.3\n")
+    assert not _failed(lesson)
+    an_hour_ago = lesson.started_at - 3600
+    os.utime(path, (an_hour_ago, an_hour_ago))
+    assert _failed(lesson) == {c.what for c in lesson.self_check().checks}
+
+
+def test_lesson10_fails_when_nothing_was_launched() -> None:
+    lesson = start(10)
+    assert "the Python launch file started param_vel_node with velocity 0.2" in _failed(lesson)
