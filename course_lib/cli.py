@@ -93,7 +93,7 @@ def _in_process_client():  # type: ignore[no-untyped-def]
 
 def _course_domain() -> str | None:
     """Return the domain of a running `make lab` when the shell sets none (then use it)."""
-    from course_lib.lab import running_lab_domain
+    from course_lib.lab_markers import running_lab_domain
 
     domain = running_lab_domain()
     if domain is not None:

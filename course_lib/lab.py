@@ -7,24 +7,21 @@ import os
 import shutil
 import signal
 from collections.abc import Sequence
-from pathlib import Path
 from typing import Any
 
 from .domain import lease_domain
 from .lab_leftovers import clean_up_killed_labs, workspaces_dir
+from .lab_markers import lab_marker
 from .machine.protocol import SOCKET_ENV
 from .paths import NOTEBOOKS_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
-from .processes import ChildProcess, pid_alive, spawn
+from .processes import ChildProcess, spawn
 from .ros2 import start_daemon
 from .session import session_env
 
 __all__ = [
     "FIRST_LESSON",
     "lab_argv",
-    "lab_marker",
-    "owning_lab",
     "run_lab",
-    "running_lab_domain",
 ]
 
 FIRST_LESSON = "notebooks/01_setup_check.ipynb"
@@ -46,42 +43,6 @@ def lab_argv(extra: Sequence[str] = ()) -> list[str]:
         *extra,
         first,
     ]
-
-
-def lab_marker(pid: int) -> Path:
-    """Return the file a running lab (process `pid`) keeps its domain in."""
-    return runtime_dir() / f"lab-{pid}.domain"
-
-
-def _parent(pid: int) -> int:
-    try:
-        return int(Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[1])
-    except (OSError, IndexError, ValueError):
-        return 0
-
-
-def owning_lab(pid: int) -> int | None:
-    """Return the pid of the running lab that process `pid` descends from, if any.
-
-    A JupyterLab terminal's shell, a kernel and the commands they run all descend from the
-    `make lab` process, whose marker file names its pid.
-    """
-    while pid > 1:
-        if lab_marker(pid).exists():
-            return pid
-        pid = _parent(pid)
-    return None
-
-
-def running_lab_domain() -> str | None:
-    """Return the ROS domain of this user's newest running `make lab`, if any."""
-    markers = sorted(runtime_dir().glob("lab-*.domain"), key=lambda p: p.stat().st_mtime)
-    for marker in reversed(markers):
-        pid = marker.stem.removeprefix("lab-")
-        if pid.isdigit() and pid_alive(int(pid)):
-            return marker.read_text().strip() or None
-        marker.unlink(missing_ok=True)  # a lab that was killed
-    return None
 
 
 def _terminal_settings() -> str:

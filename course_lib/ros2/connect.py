@@ -74,7 +74,7 @@ def _owner_pid() -> int:
     The shell is the session leader (so `time ros2 ...` or a script in that terminal does
     not own it), or the parent process when this command leads its own session.
     """
-    from ..lab import owning_lab
+    from ..lab_markers import owning_lab
 
     lab = owning_lab(os.getpid())
     if lab is not None:

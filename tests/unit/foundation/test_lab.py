@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-from course_lib import lab
+from course_lib import lab, lab_markers
 from course_lib.paths import runtime_dir
 
 
@@ -34,7 +34,7 @@ def test_terminals_use_the_running_labs_domain(markers: list) -> None:
     marker = runtime_dir() / f"lab-{os.getpid()}.domain"
     marker.write_text("77")
     markers.append(marker)
-    assert lab.running_lab_domain() == "77"
+    assert lab_markers.running_lab_domain() == "77"
 
 
 def test_a_killed_labs_marker_is_ignored_and_removed(markers: list) -> None:
@@ -47,5 +47,5 @@ def test_a_killed_labs_marker_is_ignored_and_removed(markers: list) -> None:
     marker = runtime_dir() / f"lab-{dead}.domain"
     marker.write_text("78")
     markers.append(marker)
-    assert lab.running_lab_domain() != "78"
+    assert lab_markers.running_lab_domain() != "78"
     assert not marker.exists()
