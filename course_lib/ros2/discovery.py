@@ -25,6 +25,7 @@ from typing import Any
 __all__ = [
     "DEFAULT_SPIN_TIME",
     "DEFAULT_TIMING",
+    "NAME_WAIT_S",
     "DiscoveryTiming",
     "GraphView",
     "requested_spin_time",
@@ -39,6 +40,9 @@ FASTDDS_DEFAULT_ANNOUNCEMENT_S = 3.0
 # 0.05 s on an idle machine, 0.1 s on two busy cores; see bench/ros2_discovery.py).
 ENDPOINT_EXCHANGE_S = 0.1
 POLL_S = 0.01
+# A node seen by its endpoints but not yet by name is running: its name (ros_discovery_info)
+# follows, late only on a loaded machine. Waiting that long costs nothing when all is known.
+NAME_WAIT_S = 10.0
 
 
 class SpinTimeDefault(float):
@@ -167,7 +171,8 @@ def wait_settled(
     host's participants waits until it has seen them all and the graph stayed the same for
     `quiet_s`; one that cannot waits until it is `floor_s` old (and quiet). `min_age_s`
     (`--spin-time`) is a minimum age. Nodes known by their endpoints only are waited for,
-    and participants not seen yet while the client is young: at most `unknown_wait_s`.
+    and participants not seen yet while the client is young: at most `unknown_wait_s`, or
+    NAME_WAIT_S for a node whose endpoints are seen but whose name has not arrived.
     """
     start = clock()
     current = view()
@@ -182,7 +187,9 @@ def wait_settled(
         missing = bool(current.missing_participants) and young
         if age >= floor and quiet and not current.unknown_endpoints and not missing:
             return current
-        if age >= floor and now - start >= timing.unknown_wait_s:
+        waited = now - start
+        named = not current.unknown_endpoints or waited >= NAME_WAIT_S
+        if age >= floor and waited >= timing.unknown_wait_s and named:
             return current
         sleep(POLL_S)
         seen = view()

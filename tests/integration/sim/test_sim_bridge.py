@@ -128,7 +128,8 @@ def test_scan_sees_the_box(session: Session, fresh: World) -> None:
     scan = _wait_until(
         lambda: (
             (m := latest()) and m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 > after and m
-        )
+        ),
+        timeout=30.0,  # a best-effort subscription made now; the suite runs two workers
     )
     assert len(scan.ranges) == 360 and scan.header.frame_id == "base_scan"
     assert scan.ranges[0] == pytest.approx(SCAN_TO_BOX_M, abs=0.02)
