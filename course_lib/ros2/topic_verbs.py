@@ -9,6 +9,7 @@ from typing import Any
 
 from . import verb_args
 from .context import Context
+from .discovery import NAME_WAIT_S, UNKNOWN_NODE
 from .graph import lookup
 
 __all__ = [
@@ -93,12 +94,21 @@ def _types_of(ctx: Context, name: str, *, include_hidden: bool) -> list[str] | N
     return lookup(ctx.client, lambda: dict(topics(ctx, include_hidden=include_hidden)).get(name))
 
 
+def _all_named(node: Any, name: str) -> bool:
+    infos = [*node.get_publishers_info_by_topic(name), *node.get_subscriptions_info_by_topic(name)]
+    return all(info.node_name != UNKNOWN_NODE for info in infos)
+
+
 def info(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 topic info <topic> [-v]`."""
     types = _types_of(ctx, args.topic_name, include_hidden=True)
     if types is None:
         return f"Unknown topic '{args.topic_name}'"
     node, name = ctx.client.node, args.topic_name
+    if args.verbose:  # an endpoint seen before its node's name: the name follows
+        from .client import wait_until  # rclpy: only where the command really runs
+
+        wait_until(lambda: _all_named(node, name), NAME_WAIT_S)
     end = "\n\n" if args.verbose else "\n"
     out = [f"Type: {types[0] if len(types) == 1 else types}{end}"]
     out.append(f"Publisher count: {node.count_publishers(name)}{end}")
