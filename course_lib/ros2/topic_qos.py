@@ -5,7 +5,31 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-__all__ = ["qos_from_args"]
+__all__ = ["preset", "qos_from_args"]
+
+_FIELDS = (
+    "history",
+    "depth",
+    "reliability",
+    "durability",
+    "lifespan",
+    "deadline",
+    "liveliness",
+    "liveliness_lease_duration",
+    "avoid_ros_namespace_conventions",
+)
+
+
+def preset(short_key: str) -> Any:
+    """Return a copy of rclpy's preset QoS profile `short_key`, free to change.
+
+    rclpy hands out its module-wide preset objects: changing one in a long-lived process (the
+    daemon, a kernel) would change `qos_profile_sensor_data` for everything after.
+    """
+    from rclpy.qos import QoSPresetProfiles, QoSProfile
+
+    shared = QoSPresetProfiles.get_from_short_key(short_key)
+    return QoSProfile(**{name: getattr(shared, name) for name in _FIELDS})
 
 
 def qos_from_args(args: argparse.Namespace) -> Any:
@@ -15,11 +39,10 @@ def qos_from_args(args: argparse.Namespace) -> Any:
         QoSDurabilityPolicy,
         QoSHistoryPolicy,
         QoSLivelinessPolicy,
-        QoSPresetProfiles,
         QoSReliabilityPolicy,
     )
 
-    profile = QoSPresetProfiles.get_from_short_key(args.qos_profile)
+    profile = preset(args.qos_profile)
     if args.qos_history:
         profile.history = QoSHistoryPolicy.get_from_short_key(args.qos_history)
     if args.qos_durability:

@@ -65,13 +65,11 @@ def _qos(ctx: Context, topic: str, args: argparse.Namespace) -> Any:
         from .topic_qos import qos_from_args
 
         return qos_from_args(args)
-    from rclpy.qos import (
-        QoSDurabilityPolicy,
-        QoSPresetProfiles,
-        QoSReliabilityPolicy,
-    )
+    from rclpy.qos import QoSDurabilityPolicy, QoSReliabilityPolicy
 
-    profile = QoSPresetProfiles.get_from_short_key(getattr(args, "qos_profile", "sensor_data"))
+    from .topic_qos import preset
+
+    profile = preset(getattr(args, "qos_profile", "sensor_data"))
     infos = ctx.client.node.get_publishers_info_by_topic(topic)
     if infos:
         reliable = sum(i.qos_profile.reliability == QoSReliabilityPolicy.RELIABLE for i in infos)

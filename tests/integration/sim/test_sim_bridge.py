@@ -125,12 +125,23 @@ def test_scan_sees_the_box(session: Session, fresh: World) -> None:
 
     after = fresh.odom().time_s
     latest = _last_message(session, LaserScan, "/scan", qos_profile_sensor_data)
-    scan = _wait_until(
-        lambda: (
-            (m := latest()) and m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 > after and m
-        ),
-        timeout=30.0,  # a best-effort subscription made now; the suite runs two workers
-    )
+    try:
+        scan = _wait_until(
+            lambda: (
+                (m := latest())
+                and m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 > after
+                and m
+            ),
+            timeout=30.0,  # a best-effort subscription made now; the suite runs two workers
+        )
+    except TimeoutError:
+        last = latest()
+        publishers = session.node.get_publishers_info_by_topic("/scan")
+        stamp = last and last.header.stamp
+        raise AssertionError(
+            f"no /scan after t={after}: last stamp {stamp}, now {fresh.odom().time_s}, "
+            f"publishers {[(p.node_name, p.qos_profile.reliability) for p in publishers]}"
+        ) from None
     assert len(scan.ranges) == 360 and scan.header.frame_id == "base_scan"
     assert scan.ranges[0] == pytest.approx(SCAN_TO_BOX_M, abs=0.02)
 
