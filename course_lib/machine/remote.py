@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import time
 
+from ..errors import CourseError
 from ..processes import OutputLine, owner_tag
 from .client import MachineClient
 
@@ -33,7 +34,7 @@ class LabProcess:
     def _status(self) -> dict:
         try:
             return self._client.request("world.status", timeout=5.0)
-        except Exception:
+        except CourseError:  # the lab itself is gone: nothing more to say of its world
             return {"returncode": None, "tail": []}
 
     @property

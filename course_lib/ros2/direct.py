@@ -7,10 +7,13 @@ services; `use_sim_time` is set as `--use-sim-time` asks.
 from __future__ import annotations
 
 import contextlib
+import logging
 import os
 import threading
 import time
 from typing import Any
+
+_log = logging.getLogger(__name__)
 
 __all__ = ["DirectNode", "cli_node_name", "daemon_node_name"]
 
@@ -59,8 +62,11 @@ class DirectNode:
         self._thread.start()
 
     def _spin(self) -> None:
-        with contextlib.suppress(Exception):  # ends when the context shuts down
+        try:
             self.executor.spin()
+        except Exception as err:
+            if self.context.ok():  # not the context shutting down: say so, with traceback
+                _log.error("the ros2 command's ROS thread stopped", exc_info=err)
 
     def wait_future(self, future: Any, timeout: float) -> Any:
         """Wait for a future completed by the spin thread; raise TimeoutError."""
