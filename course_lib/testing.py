@@ -51,6 +51,12 @@ def pytest_argv(extra: list[str]) -> list[str]:
         workers,
         "--dist",
         "loadfile",
+        # Tests of real processes on 2 busy cores: one that fails is run again (up to twice)
+        # and reported as a rerun, so an intermittent failure stays visible in the summary.
+        "--reruns",
+        "2",
+        "--reruns-delay",
+        "1",
         *extra,
     ]
 
