@@ -9,12 +9,15 @@ STAMP_WS := rosject/install/.built
 # added or removed (setup.py installs them by glob).
 ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
 
-.PHONY: lab setup test test-fast bench notebooks lint format clean doctor stop smoke-python
+.PHONY: lab setup hub test test-fast bench notebooks lint format clean doctor stop smoke-python
 
 lab: setup  ## Start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
 	$(PY) -m course_lib lab $(EXTRA)
 
 setup: $(STAMP_ENV) $(STAMP_WS)  ## Build the environment and the ROS workspace
+
+hub: setup  ## Start the class's JupyterHub (as root: `sudo make hub`; settings in config/hub.yaml)
+	$(PY) -m course_lib hub $(EXTRA)
 
 test: setup  ## Run the whole test suite (unit, integration, notebooks, browser)
 	$(PY) -m course_lib test

@@ -27,6 +27,23 @@ def _lab(args: argparse.Namespace) -> int:
     return run_lab(args.extra)
 
 
+def _hub(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from .hub.launcher import run_hub
+    from .hub.settings import HUB_YAML
+
+    parser = argparse.ArgumentParser(prog="python -m course_lib hub")
+    parser.add_argument("--config", type=Path, default=HUB_YAML, help="the class's hub.yaml")
+    return run_hub(parser.parse_args(args.extra).config)
+
+
+def _hub_lab(args: argparse.Namespace) -> int:
+    from .hub.singleuser import run_hub_lab
+
+    return run_hub_lab(args.extra)
+
+
 def _test(args: argparse.Namespace) -> int:
     from .testing import run_tests
 
@@ -57,6 +74,8 @@ def _stop(_args: argparse.Namespace) -> int:
 COMMANDS = {
     "build": (_build, "build the ROS workspace in rosject/ with colcon"),
     "lab": (_lab, "start JupyterLab on the first lesson"),
+    "hub": (_hub, "start the class's JupyterHub (config/hub.yaml; as root)"),
+    "hub-lab": (_hub_lab, "a learner's server on the class hub (started by the hub)"),
     "test": (_test, "run the whole test suite"),
     "notebooks": (_notebooks, "re-execute the notebooks to refresh their stored outputs"),
     "doctor": (_doctor, "say what is installed and which course processes run"),

@@ -6,7 +6,8 @@ import json
 import os
 import shutil
 import signal
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from pathlib import Path
 from typing import Any
 
 from .domain import lease_domain
@@ -20,11 +21,22 @@ from .session import session_env
 
 __all__ = [
     "FIRST_LESSON",
+    "course_server_options",
     "lab_argv",
     "run_lab",
 ]
 
 FIRST_LESSON = "notebooks/01_setup_check.ipynb"
+
+
+def course_server_options() -> list[str]:
+    """Return the Jupyter server options every lab of the course runs with (local or hub)."""
+    return [
+        # A login shell would re-read /etc/profile and drop .venv/bin (and `ros2`) from PATH.
+        f"--ServerApp.terminado_settings={_terminal_settings()}",
+        # a saved notebook keeps no live 3D view or widget (they would show errors reopened)
+        "--ContentsManager.pre_save_hook=course_lib.live_outputs.scrub_on_save",
+    ]
 
 
 def lab_argv(extra: Sequence[str] = ()) -> list[str]:
@@ -36,10 +48,7 @@ def lab_argv(extra: Sequence[str] = ()) -> list[str]:
         "--ServerApp.ip=127.0.0.1",
         f"--ServerApp.root_dir={REPO_ROOT}",
         *(["--allow-root"] if os.geteuid() == 0 else []),  # containers and CI run as root
-        # A login shell would re-read /etc/profile and drop .venv/bin (and `ros2`) from PATH.
-        f"--ServerApp.terminado_settings={_terminal_settings()}",
-        # a saved notebook keeps no live 3D view or widget (they would show errors reopened)
-        "--ContentsManager.pre_save_hook=course_lib.live_outputs.scrub_on_save",
+        *course_server_options(),
         *extra,
         first,
     ]
@@ -51,19 +60,29 @@ def _terminal_settings() -> str:
     return json.dumps({"shell_command": [shell, "-i"]})
 
 
-def _start_machine(env: dict[str, str]) -> Any:
+def _start_machine(env: dict[str, str], cwd: Path) -> Any:
     """Start the lab's machine service: it owns the world every notebook of the lab shares."""
     from .machine.service import MachineService
 
     def spawn_in_lab(argv: Sequence[str], *, name: str) -> ChildProcess:
-        return spawn(argv, name=name, env=env, cwd=REPO_ROOT)
+        return spawn(argv, name=name, env=env, cwd=cwd)
 
     path = runtime_dir() / f"lab-{os.getpid()}.sock"
     return MachineService(path, spawn_in_lab).start()
 
 
-def run_lab(extra: Sequence[str] = ()) -> int:
-    """Start the ros2 daemon and JupyterLab in a leased domain; stop both on Ctrl-C."""
+def run_lab(
+    extra: Sequence[str] = (),
+    *,
+    server_argv: Callable[[Sequence[str]], list[str]] = lab_argv,
+    cwd: Path = REPO_ROOT,
+    name: str = "jupyterlab",
+) -> int:
+    """Start the ros2 daemon and JupyterLab in a leased domain; stop both on Ctrl-C.
+
+    `server_argv` builds the Jupyter server's command line from the extra options (a hub's
+    learner runs jupyterhub-singleuser instead of jupyter lab), run in `cwd`.
+    """
     note = clean_up_killed_labs()
     if note:
         print(note)
@@ -72,16 +91,19 @@ def run_lab(extra: Sequence[str] = ()) -> int:
     marker.write_text(str(lease.domain_id))
     env = session_env(lease.domain_id)
     env["COURSE_LAB"] = "1"
-    machine = _start_machine(env)
+    machine = _start_machine(env, cwd)
     env[SOCKET_ENV] = str(machine.path)
-    print(f"ROS 2 course: ROS_DOMAIN_ID={lease.domain_id} for this JupyterLab and its terminals.")
+    print(
+        f"ROS 2 course: ROS_DOMAIN_ID={lease.domain_id} for this JupyterLab and its terminals.",
+        flush=True,
+    )
     children: list[ChildProcess] = [start_daemon(env)]
     signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop cleanly on SIGTERM too
     # A workspace folder of its own: lesson 1 opens without the tabs of earlier labs or tests.
     workspaces = workspaces_dir(os.getpid())
     workspaces.mkdir(mode=0o700, exist_ok=True)
-    argv = lab_argv([f"--LabApp.workspaces_dir={workspaces}", *extra])
-    lab = spawn(argv, name="jupyterlab", env=env, cwd=REPO_ROOT, capture=False)
+    argv = server_argv([f"--LabApp.workspaces_dir={workspaces}", *extra])
+    lab = spawn(argv, name=name, env=env, cwd=cwd, capture=False)
     children.append(lab)
     try:
         code = lab.wait()

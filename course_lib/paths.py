@@ -13,12 +13,14 @@ from .errors import RuntimeDirError
 
 __all__ = [
     "CONFIG_DIR",
+    "LEARNER_ROOT_ENV",
     "NOTEBOOKS_DIR",
     "PACKAGE_DIR",
     "REPO_ROOT",
     "ROSJECT_DIR",
     "SOCKET_NAME_MAX",
     "WORKSPACE_INSTALL_DIR",
+    "learner_notebooks_dir",
     "runtime_dir",
     "venv_bin_dir",
 ]
@@ -29,6 +31,8 @@ ROSJECT_DIR = REPO_ROOT / "rosject"
 WORKSPACE_INSTALL_DIR = ROSJECT_DIR / "install"
 CONFIG_DIR = REPO_ROOT / "config"
 NOTEBOOKS_DIR = REPO_ROOT / "notebooks"
+# On a class hub each learner has a copy of the notebooks in their home: this names its folder.
+LEARNER_ROOT_ENV = "COURSE_LEARNER_ROOT"
 SOCKET_NAME_MAX = 32  # the longest socket name in runtime_dir() ("ros2-daemon-232.sock": 20)
 _SUN_PATH_MAX = 108  # bytes of a Unix socket path, its final NUL included
 _POSIX_TMP = Path(os.sep, "tmp")  # where Python's tempfile goes without TMPDIR: always short
@@ -83,6 +87,12 @@ def runtime_dir() -> Path:
         path.mkdir(mode=0o700)
     _check_private(path)
     return path
+
+
+def learner_notebooks_dir() -> Path:
+    """Return the folder of the learner's notebooks: the clone's, or their copy on a hub."""
+    root = os.environ.get(LEARNER_ROOT_ENV)
+    return Path(root) / "notebooks" if root else NOTEBOOKS_DIR
 
 
 def venv_bin_dir() -> Path:

@@ -140,6 +140,7 @@ class _Converter:
                 raise self.fail(key_node, full, "key given twice", "keep one of the two lines.")
             values[name] = self.convert(value_node, hints[name], full)
             lines[name] = key_node
+            lines[f"{name}[]"] = value_node
             self.check_limits(value_node, fields[name].metadata, values[name], full)
         missing = [n for n, f in fields.items() if n not in values and _required(f)]
         if missing:
@@ -153,7 +154,9 @@ class _Converter:
             return schema(**values)
         except SettingValueError as err:
             full = f"{key}.{err.key}" if key else err.key
-            raise self.fail(lines.get(err.key, node), full, err.problem, err.hint) from None
+            raise self.fail(
+                _error_node(err.key, lines, node), full, err.problem, err.hint
+            ) from None
 
     def check_limits(self, node: yaml.Node, meta: Any, value: Any, key: str) -> None:
         tests = {
@@ -170,6 +173,17 @@ class _Converter:
                 raise self.fail(
                     node, key, f"{shown!r} is out of range", f"use a value {words} {meta[name]}."
                 )
+
+
+def _error_node(key: str, lines: dict[str, yaml.Node], node: yaml.Node) -> yaml.Node:
+    """Return the node a schema's error names: `key`'s line, or item i's line for `key[i]`."""
+    name, _, index = key.partition("[")
+    items = lines.get(f"{name}[]")
+    if index.rstrip("]").isdigit() and isinstance(items, yaml.SequenceNode):
+        position = int(index.rstrip("]"))
+        if position < len(items.value):
+            return items.value[position]
+    return lines.get(key, lines.get(name, node))
 
 
 def _required(field: dataclasses.Field[Any]) -> bool:

@@ -7,7 +7,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from ..paths import NOTEBOOKS_DIR, REPO_ROOT
+from ..paths import REPO_ROOT, learner_notebooks_dir
 
 __all__ = [
     "LEARNER_DIR",
@@ -19,18 +19,19 @@ __all__ = [
 ]
 
 # Gitignored: what lessons write for the learner (edited params files, the panel's saves).
-LEARNER_DIR = NOTEBOOKS_DIR / "my_files"
+LEARNER_DIR = learner_notebooks_dir() / "my_files"
 
 
 def display_path(path: str | os.PathLike[str]) -> str:
     """Return `path` as the learner would type it: relative to the repository when inside it."""
     resolved = Path(path).resolve()
-    for base in (NOTEBOOKS_DIR, REPO_ROOT):
+    notebooks = learner_notebooks_dir().resolve()
+    for base in (notebooks, REPO_ROOT):
         try:
             rel = resolved.relative_to(base)
         except ValueError:
             continue
-        return str(rel) if base == NOTEBOOKS_DIR else f"../{rel}"
+        return str(rel) if base == notebooks else f"../{rel}"
     return str(path)
 
 

@@ -6,8 +6,11 @@ from typing import Any
 
 __all__ = ["Terminal"]
 
+# Without a token (a hub's server signs in with a cookie) the request carries the XSRF header.
 _OPEN = """async ([base, token]) => {
-  const reply = await fetch(`${base}/api/terminals?token=${token}`, {method: 'POST'});
+  const xsrf = (document.cookie.match(/(?:^|; )_xsrf=([^;]*)/) || [])[1] || '';
+  const headers = token ? {} : {'X-XSRFToken': decodeURIComponent(xsrf)};
+  const reply = await fetch(`${base}/api/terminals?token=${token}`, {method: 'POST', headers});
   const name = (await reply.json()).name;
   window.__term = {out: '', name};
   const url = `${base.replace('http', 'ws')}/terminals/websocket/${name}?token=${token}`;
@@ -59,7 +62,10 @@ class Terminal:
     def close(self) -> None:
         """End the terminal's shell."""
         self.page.evaluate(
-            "([base, name, token]) => fetch(`${base}/api/terminals/${name}?token=${token}`,"
-            " {method: 'DELETE'})",
+            "([base, name, token]) => {"
+            " const xsrf = (document.cookie.match(/(?:^|; )_xsrf=([^;]*)/) || [])[1] || '';"
+            " const headers = token ? {} : {'X-XSRFToken': decodeURIComponent(xsrf)};"
+            " return fetch(`${base}/api/terminals/${name}?token=${token}`,"
+            " {method: 'DELETE', headers}); }",
             [self.base_url, self.name, self.token],
         )

@@ -1,0 +1,129 @@
+"""The learners' and admins' Unix accounts: created by the hub's set-up, never changed after."""
+
+from __future__ import annotations
+
+import os
+import pwd
+import secrets
+import subprocess
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+import yaml
+
+from ..errors import ConfigError, CourseError
+from .settings import HUB_YAML, HubSettings
+
+__all__ = ["FIRST_LEARNER_UID", "Account", "ensure_accounts", "refuse_system_accounts"]
+
+FIRST_LEARNER_UID = 1000  # below it: accounts of the system (root, daemon, www-data...)
+PASSWORDS_FILE = "passwords.txt"
+
+
+@dataclass(frozen=True)
+class Account:
+    """One person who may sign in, and whether set-up just created their Unix account."""
+
+    name: str
+    created: bool
+
+
+def _item_line(path: Path, key: str, name: str) -> int | None:
+    """Return the line of `name` in the YAML list `key` of `path` (for an error message)."""
+    try:
+        root = yaml.compose(path.read_text(encoding="utf-8"), Loader=yaml.SafeLoader)
+    except (OSError, yaml.YAMLError):
+        return None
+    for key_node, value_node in getattr(root, "value", []):
+        if key_node.value == key and isinstance(value_node, yaml.SequenceNode):
+            for item in value_node.value:
+                if item.value == name:
+                    return item.start_mark.line + 1
+    return None
+
+
+def refuse_system_accounts(settings: HubSettings, source: Path = HUB_YAML) -> None:
+    """Refuse a listed name that is an account of the system (root, daemon...): a learner's
+    server would run with that account's rights."""
+    for key in ("learners", "admins"):
+        for name in getattr(settings, key):
+            try:
+                uid = pwd.getpwnam(name).pw_uid
+            except KeyError:
+                continue
+            if uid < FIRST_LEARNER_UID:
+                raise ConfigError(
+                    str(source),
+                    _item_line(source, key, name),
+                    key,
+                    f"{name!r} is an account of the system (uid {uid}), not a person's",
+                    "choose another name for that learner or admin.",
+                )
+
+
+def _create(name: str, password: str | None) -> None:
+    subprocess.run(
+        ["useradd", "--create-home", "--user-group", "--shell", "/bin/bash", name],
+        check=True,
+        capture_output=True,
+        text=True,
+    )
+    home = Path(pwd.getpwnam(name).pw_dir)
+    home.chmod(0o700)  # a learner's notebooks and files are theirs alone
+    if password is not None:
+        subprocess.run(
+            ["chpasswd"], input=f"{name}:{password}\n", check=True, capture_output=True, text=True
+        )
+
+
+def _record_passwords(state: Path, passwords: dict[str, str]) -> Path:
+    """Append new initial passwords to the state folder's root-only list; return its path."""
+    path = state / PASSWORDS_FILE
+    lines = path.read_text(encoding="utf-8").splitlines() if path.exists() else []
+    lines += [f"{name} {password}" for name, password in passwords.items()]
+    partial = path.with_suffix(".partial")
+    fd = os.open(partial, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
+    with os.fdopen(fd, "w", encoding="utf-8") as out:
+        out.write("\n".join(lines) + "\n")
+    partial.replace(path)
+    return path
+
+
+def ensure_accounts(
+    names: Iterable[str], state: Path, *, with_password: bool
+) -> tuple[list[Account], Path | None]:
+    """Create the missing Unix accounts (home folder private to its owner).
+
+    With `with_password` (PAM sign-in) each new account gets a random initial password, written
+    to `state/passwords.txt` (root only) for the instructor to hand out. Existing accounts keep
+    their password. Returns the accounts and the password list's path if it was written.
+    """
+    if os.geteuid() != 0:
+        raise CourseError(
+            "A class hub creates one Unix account per learner and runs each learner's server "
+            "as that account: that needs root.",
+            hint="run it as root: `sudo make hub`.",
+        )
+    accounts: list[Account] = []
+    passwords: dict[str, str] = {}
+    for name in names:
+        try:
+            pwd.getpwnam(name)
+            accounts.append(Account(name, created=False))
+            continue
+        except KeyError:
+            pass
+        password = secrets.token_urlsafe(9) if with_password else None
+        try:
+            _create(name, password)
+        except subprocess.CalledProcessError as err:
+            raise CourseError(
+                f"Could not create the Unix account {name!r}: {err.stderr.strip()}",
+                hint="create it yourself (`useradd --create-home NAME`), then retry.",
+            ) from None
+        if password is not None:
+            passwords[name] = password
+        accounts.append(Account(name, created=True))
+    written = _record_passwords(state, passwords) if passwords else None
+    return accounts, written

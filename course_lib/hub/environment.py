@@ -1,0 +1,151 @@
+"""The environment every learner runs: a copy of the course built with an interpreter that
+every Unix user may execute (a root-private interpreter would give them "Permission denied")."""
+
+from __future__ import annotations
+
+import filecmp
+import os
+import shutil
+import stat
+import subprocess
+from collections.abc import Callable
+from pathlib import Path
+
+from ..errors import CourseError
+from ..paths import REPO_ROOT
+
+__all__ = ["build_environment", "check_world_executable", "course_copy", "source_files"]
+
+# Never copied: what `make setup` builds, what learners or tests write, git's own folder.
+_SKIPPED = (
+    ".venv",
+    ".git",
+    "rosject/build",
+    "rosject/install",
+    "rosject/log",
+    "notebooks/my_files",
+    "test-artifacts",
+)
+
+
+def course_copy(environment: Path) -> Path:
+    """Return where the learners' copy of the course lives inside `environment`."""
+    return environment / "course"
+
+
+def _skipped(relative: str) -> bool:
+    parts = Path(relative).parts
+    return "__pycache__" in parts or any(
+        relative == s or relative.startswith(s + "/") for s in _SKIPPED
+    )
+
+
+def source_files(repo: Path = REPO_ROOT) -> list[str]:
+    """Return the course's files relative to `repo`: git's view (tracked and new files) when
+    it is a clone, else every file outside the built and written folders."""
+    if (repo / ".git").exists() and shutil.which("git"):
+        listed = (
+            subprocess.run(
+                ["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"],
+                cwd=repo,
+                capture_output=True,
+                check=True,
+            )
+            .stdout.decode()
+            .split("\0")
+        )
+        return sorted(f for f in listed if f and not _skipped(f) and (repo / f).is_file())
+    found = []
+    for folder, dirs, files in os.walk(repo):
+        rel_folder = os.path.relpath(folder, repo)
+        dirs[:] = [d for d in dirs if not _skipped(os.path.normpath(f"{rel_folder}/{d}"))]
+        found += [os.path.normpath(f"{rel_folder}/{f}") for f in files]
+    return sorted(f for f in found if not _skipped(f))
+
+
+def _sync(repo: Path, target: Path) -> int:
+    """Copy the course's files into `target`, keeping times (make sees nothing new when nothing
+    changed); return how many files were copied."""
+    copied = 0
+    for relative in source_files(repo):
+        source, destination = repo / relative, target / relative
+        if destination.exists() and filecmp.cmp(source, destination, shallow=False):
+            continue
+        destination.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(source, destination)
+        copied += 1
+    return copied
+
+
+def check_world_executable(path: Path) -> None:
+    """Refuse `path` unless every Unix user can reach and execute it."""
+    path = Path(path)
+    if not path.exists():
+        raise CourseError(
+            f"{path} does not exist.",
+            hint="install Debian's Python (`apt-get install python3.11 python3.11-venv "
+            "python3.11-dev`) or set `python:` in config/hub.yaml to one every user can run.",
+        )
+    for part in [*reversed(path.parents), path]:
+        mode = part.stat().st_mode
+        needed = stat.S_IXOTH | (stat.S_IROTH if part == path else 0)
+        if mode & needed != needed:
+            raise CourseError(
+                f"Learners cannot execute {path}: {part} is closed to other users "
+                f"(mode {stat.S_IMODE(mode):o}).",
+                hint="set `python:` in config/hub.yaml to an interpreter every user can run, "
+                "such as Debian's /usr/bin/python3.11.",
+            )
+
+
+def _open_to_all(root: Path) -> None:
+    """Let every user read (and enter) what the build wrote, whatever root's umask was."""
+    for folder, dirs, files in os.walk(root):
+        for name in [*dirs, *files]:
+            path = Path(folder, name)
+            if path.is_symlink():
+                continue
+            mode = path.stat().st_mode
+            extra = stat.S_IROTH | stat.S_IRGRP
+            if stat.S_ISDIR(mode) or mode & stat.S_IXUSR:
+                extra |= stat.S_IXOTH | stat.S_IXGRP
+            if mode & extra != extra:
+                path.chmod(stat.S_IMODE(mode) | extra)
+    root.chmod(0o755)
+
+
+def build_environment(
+    environment: Path, python: Path, *, say: Callable[[str], None] = print
+) -> Path:
+    """Copy the course into `environment` and run `make setup` there with `python`.
+
+    Returns the copy's folder. A second call rebuilds only what changed (make's stamps).
+    """
+    check_world_executable(python)
+    environment.mkdir(parents=True, exist_ok=True)
+    for part in [*reversed(environment.parents), environment]:
+        if part.stat().st_mode & stat.S_IXOTH == 0:
+            raise CourseError(
+                f"Learners cannot reach {environment}: {part} is closed to other users.",
+                hint="set `environment:` in config/hub.yaml to a folder outside private homes, "
+                "e.g. /opt/ros2-params-course.",
+            )
+    copy = course_copy(environment)
+    if copy.resolve() != REPO_ROOT.resolve():
+        copied = _sync(REPO_ROOT, copy)
+        say(f"The learners' copy of the course is in {copy} ({copied} files updated).")
+    say(f"Building the learners' environment with {python} (`make setup`; first time: minutes).")
+    result = subprocess.run(
+        ["make", "--no-print-directory", "-C", str(copy), "setup", f"PYTHON={python}"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    if result.returncode != 0:
+        tail = "\n".join((result.stdout + result.stderr).strip().splitlines()[-15:])
+        raise CourseError(
+            f"`make setup` failed in {copy}:\n{tail}",
+            hint="fix what it names (it is the same set-up as `make lab`), then retry.",
+        )
+    _open_to_all(environment)
+    return copy

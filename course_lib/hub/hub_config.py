@@ -1,0 +1,87 @@
+"""The class hub's JupyterHub settings, from a HubPlan (read by jupyterhub_config.py)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Any
+
+from .plan import HubPlan
+from .singleuser import DEFAULT_URL
+
+__all__ = ["configure"]
+
+LEARNER_PATH = "/usr/local/bin:/usr/bin:/bin"
+
+
+def _tied(*argv: str) -> list[str]:
+    """Return a command line that runs `argv` so that it dies with the hub."""
+    return [sys.executable, "-m", "course_lib.hub.tied", *argv]
+
+
+def _progress(plan: HubPlan) -> tuple[list[dict[str, Any]], list[dict[str, Any]], dict[str, str]]:
+    """Return the progress service, its roles and the environment it gives learners' servers."""
+    try:  # TEMP until the progress service lands
+        from .progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
+    except ImportError:
+        return [], [], {}
+
+    spec = service_spec(sys.executable, Path(plan.state) / "progress.sqlite", plan.progress_port)
+    spec["command"] = _tied(*spec["command"])
+    url = f"http://127.0.0.1:{plan.progress_port}/services/{SERVICE_NAME}/"
+    return [spec], roles(), {PROGRESS_URL_ENV: url}
+
+
+def _idle_culler(plan: HubPlan) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
+    if plan.idle_minutes <= 0:
+        return [], []
+    service = {
+        "name": "idle-culler",
+        "command": _tied(sys.executable, "-m", "jupyterhub_idle_culler",
+                         f"--timeout={plan.idle_minutes * 60}"),
+    }  # fmt: skip
+    role = {
+        "name": "idle-culler",
+        "scopes": ["list:users", "read:users:activity", "read:servers", "delete:servers"],
+        "services": ["idle-culler"],
+    }
+    return [service], [role]
+
+
+def configure(c: Any, plan: HubPlan) -> None:
+    """Fill JupyterHub's config object `c` for the class described by `plan`."""
+    state = Path(plan.state)
+    c.JupyterHub.ip = plan.ip
+    c.JupyterHub.port = plan.port
+    c.JupyterHub.hub_ip = "127.0.0.1"
+    c.JupyterHub.hub_port = plan.hub_port
+    c.JupyterHub.db_url = f"sqlite:///{state / 'jupyterhub.sqlite'}"
+    c.JupyterHub.cookie_secret_file = str(state / "jupyterhub_cookie_secret")
+    c.JupyterHub.cleanup_servers = True  # the hub stopping stops every learner's server
+    c.ConfigurableHTTPProxy.api_url = f"http://127.0.0.1:{plan.proxy_api_port}"
+    c.ConfigurableHTTPProxy.command = _tied(plan.proxy_command)
+    c.ConfigurableHTTPProxy.pid_file = str(state / "proxy.pid")
+
+    c.JupyterHub.authenticator_class = plan.authenticator
+    c.Authenticator.allowed_users = set(plan.learners) | set(plan.admins)
+    c.Authenticator.admin_users = set(plan.admins)
+    if plan.authenticator == "shared-password":
+        c.SharedPasswordAuthenticator.user_password = plan.shared_password
+        c.SharedPasswordAuthenticator.admin_password = plan.admin_password
+
+    services, roles, server_env = _progress(plan)
+    culler, culler_roles = _idle_culler(plan)
+    c.JupyterHub.services = services + culler
+    c.JupyterHub.load_roles = roles + culler_roles
+
+    c.JupyterHub.spawner_class = "course_lib.hub.spawner.CourseSpawner"
+    c.Spawner.cmd = [plan.learner_python, "-m", "course_lib", "hub-lab"]
+    c.Spawner.default_url = DEFAULT_URL
+    c.Spawner.env_keep = ["LANG", "LC_ALL"]  # nothing of root's environment (its venv, PATH)
+    venv_bin = str(Path(plan.learner_python).parent)
+    c.Spawner.environment = {"PATH": f"{venv_bin}:{LEARNER_PATH}", **server_env}
+    c.Spawner.start_timeout = 120
+    c.Spawner.http_timeout = 120
+    from .spawner import stop_leftovers_hook  # imports JupyterHub: the hub's side only
+
+    c.Spawner.post_stop_hook = stop_leftovers_hook

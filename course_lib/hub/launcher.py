@@ -1,0 +1,169 @@
+"""`make hub` (`python -m course_lib hub`): check everything, build, then run the class hub."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import secrets
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import yaml
+
+from ..errors import ConfigError, CourseError
+from .accounts import ensure_accounts, refuse_system_accounts
+from .environment import build_environment, check_world_executable
+from .plan import PLAN_ENV, HubPlan, write_plan
+from .proxy import install_proxy
+from .settings import HUB_YAML, HubSettings, load_hub_settings
+from .tied import tie_to_parent
+
+__all__ = ["run_hub"]
+
+CONFIG_FILE = Path(__file__).resolve().parent / "jupyterhub_config.py"
+READY_TIMEOUT_S = 60.0
+STOP_TIMEOUT_S = 90.0  # the hub stops every learner's server first
+
+
+def _key_line(path: Path, key: str) -> int | None:
+    """Return the line of top-level `key` in the YAML file `path`, if it is there."""
+    with contextlib.suppress(OSError, yaml.YAMLError):
+        root = yaml.compose(path.read_text(encoding="utf-8"), Loader=yaml.SafeLoader)
+        for key_node, _ in getattr(root, "value", []):
+            if key_node.value == key:
+                return key_node.start_mark.line + 1
+    return None
+
+
+def _check_port(settings: HubSettings, source: Path) -> None:
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
+        try:
+            probe.bind((settings.ip, settings.port))
+        except OSError as err:
+            raise ConfigError(
+                str(source),
+                _key_line(source, "port"),
+                "port",
+                f"port {settings.port} on {settings.ip} cannot be used: {err.strerror}",
+                "stop what listens there, or set another `port:`.",
+            ) from None
+
+
+def _free_port() -> int:
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
+
+
+def _check_before_start(settings: HubSettings, source: Path) -> None:
+    """Refuse before anything is built or started: root, names, port, npm, the interpreter."""
+    if os.geteuid() != 0:
+        raise CourseError(
+            "A class hub runs each learner's server as their own Unix account: it needs root.",
+            hint="run it as root: `sudo make hub`.",
+        )
+    refuse_system_accounts(settings, source)
+    _check_port(settings, source)
+    proxy = Path(settings.environment) / "proxy" / "node_modules" / ".bin"
+    if shutil.which("npm") is None and not (proxy / "configurable-http-proxy").exists():
+        raise CourseError(
+            "npm is missing: the hub's proxy (configurable-http-proxy) is installed with npm.",
+            hint="install Node.js and npm (`apt-get install nodejs npm`), then `make hub` again.",
+        )
+    check_world_executable(Path(settings.python))
+
+
+def _plan(settings: HubSettings, state: Path, course: Path, proxy: Path) -> HubPlan:
+    admin_password = None
+    if settings.authenticator == "shared-password":
+        admin_password = secrets.token_urlsafe(32)
+        (state / "admin-password.txt").write_text(admin_password + "\n", encoding="utf-8")
+    return HubPlan(
+        ip=settings.ip,
+        port=settings.port,
+        hub_port=_free_port(),
+        proxy_api_port=_free_port(),
+        progress_port=_free_port(),
+        authenticator=settings.authenticator,
+        learners=settings.learners,
+        admins=settings.admins,
+        state=str(state),
+        course=str(course),
+        proxy_command=str(proxy),
+        idle_minutes=settings.idle_minutes,
+        shared_password=settings.shared_password,
+        admin_password=admin_password,
+    )
+
+
+def _wait_ready(hub: subprocess.Popen[bytes], url: str) -> None:
+    deadline = time.monotonic() + READY_TIMEOUT_S
+    while time.monotonic() < deadline:
+        if hub.poll() is not None:
+            raise CourseError(
+                f"JupyterHub stopped while starting (exit {hub.returncode}); its log is above.",
+                hint="fix what the log names, then `make hub` again.",
+            )
+        with (
+            contextlib.suppress(urllib.error.URLError, OSError),
+            urllib.request.urlopen(f"{url}hub/health", timeout=2),
+        ):
+            return
+        time.sleep(0.3)
+    raise CourseError(f"JupyterHub did not answer on {url} within {READY_TIMEOUT_S:.0f} s.")
+
+
+def _stop(hub: subprocess.Popen[bytes]) -> int:
+    if hub.poll() is None:
+        hub.send_signal(signal.SIGTERM)
+        try:
+            hub.wait(STOP_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            hub.kill()
+            hub.wait()
+    return hub.returncode or 0
+
+
+def run_hub(config: Path = HUB_YAML) -> int:
+    """Start the class hub described by `config`; stop it (and every server) on Ctrl-C."""
+    settings = load_hub_settings(config)
+    _check_before_start(settings, config)
+    state = Path(settings.state)
+    state.mkdir(mode=0o700, parents=True, exist_ok=True)
+    state.chmod(0o700)
+    course = build_environment(Path(settings.environment), Path(settings.python))
+    proxy = install_proxy(Path(settings.environment))
+    accounts, passwords = ensure_accounts(
+        settings.users, state, with_password=settings.authenticator == "pam"
+    )
+    for account in accounts:
+        if account.created:
+            print(f"Created the Unix account {account.name!r}.")
+    if passwords:
+        print(f"Their initial passwords are in {passwords} (root only): hand them out.")
+    plan = write_plan(_plan(settings, state, course, proxy), state / "plan.json")
+    env = {**os.environ, PLAN_ENV: str(plan)}
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    hub = subprocess.Popen(
+        [sys.executable, "-m", "jupyterhub", "-f", str(CONFIG_FILE)],
+        cwd=state, env=env, preexec_fn=tie_to_parent,
+    )  # fmt: skip
+    host = "127.0.0.1" if settings.ip in ("0.0.0.0", "::") else settings.ip
+    url = f"http://{host}:{settings.port}/"
+    try:
+        _wait_ready(hub, url)
+        print(f"The class hub is up: {url} (sign in as a learner, or as an admin).")
+        print(f"Progress of the class (admins only): {url}services/course-progress/")
+        print("Ctrl-C stops the hub and every learner's server.")
+        return hub.wait() or 0
+    except KeyboardInterrupt:
+        return _stop(hub)
+    finally:
+        _stop(hub)

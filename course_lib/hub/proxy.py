@@ -1,0 +1,53 @@
+"""The hub's proxy, configurable-http-proxy, installed from npm at the version pinned here."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+from pathlib import Path
+
+from ..errors import CourseError
+
+__all__ = ["PINS_DIR", "install_proxy"]
+
+PINS_DIR = Path(__file__).resolve().parent / "proxy"  # package.json and its lock file
+_PINNED = ("package.json", "package-lock.json")
+
+
+def _missing_npm() -> CourseError:
+    return CourseError(
+        "npm is missing: the hub's proxy (configurable-http-proxy) is installed with npm.",
+        hint="install Node.js and npm (`apt-get install nodejs npm`), then run `make hub` again.",
+    )
+
+
+def install_proxy(environment: Path) -> Path:
+    """Install the pinned proxy under `environment/proxy` (again only when the pins changed);
+    return the path of its command."""
+    folder = environment / "proxy"
+    command = folder / "node_modules" / ".bin" / "configurable-http-proxy"
+    same = all(
+        (folder / name).exists() and (folder / name).read_bytes() == (PINS_DIR / name).read_bytes()
+        for name in _PINNED
+    )
+    if same and command.exists():
+        return command
+    npm = shutil.which("npm")
+    if npm is None or shutil.which("node") is None:
+        raise _missing_npm()
+    folder.mkdir(parents=True, exist_ok=True)
+    for name in _PINNED:
+        shutil.copyfile(PINS_DIR / name, folder / name)
+    result = subprocess.run(
+        [npm, "ci", "--no-audit", "--no-fund", "--loglevel=error"],
+        cwd=folder,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    if result.returncode != 0 or not command.exists():
+        raise CourseError(
+            f"npm could not install configurable-http-proxy in {folder}:\n{result.stderr.strip()}",
+            hint="check that this host reaches the npm registry, then run `make hub` again.",
+        )
+    return command

@@ -1,0 +1,159 @@
+"""A real class hub for the tests: `python -m course_lib hub` with test learners (needs root).
+
+The learners' environment is built once per clone in the temp folder (make's stamps make a
+second run quick); the hub's state, the accounts and every process are the test's own and are
+removed after it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import os
+import pwd
+import signal
+import socket
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+from course_lib.paths import REPO_ROOT
+from course_lib.processes import ChildProcess, spawn
+from course_lib.testing import independent_env
+
+__all__ = ["ClassHub", "processes_of", "server_token", "uid_of", "wait_until"]
+
+BUILD_TIMEOUT_S = 1200.0  # the first build of the learners' environment (pip, colcon)
+
+
+def _free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
+
+
+def uid_of(name: str) -> int | None:
+    try:
+        return pwd.getpwnam(name).pw_uid
+    except KeyError:
+        return None
+
+
+def processes_of(name: str) -> list[str]:
+    """Return `pid command` of every process running as Unix user `name`."""
+    uid = uid_of(name)
+    found = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            if entry.stat().st_uid != uid:
+                continue
+            command = (entry / "cmdline").read_bytes().replace(b"\0", b" ").decode()[:160]
+        except OSError:
+            continue
+        found.append(f"{entry.name} {command}")
+    return found
+
+
+def remove_account(name: str) -> None:
+    """Remove a test account and its home (its processes first: it is the test's own)."""
+    uid = uid_of(name)
+    if uid is None:
+        return
+    for line in processes_of(name):
+        with contextlib.suppress(OSError):
+            os.kill(int(line.split(" ", 1)[0]), signal.SIGKILL)
+    subprocess.run(["userdel", "--remove", name], check=False, capture_output=True)
+
+
+class ClassHub:
+    """The course's hub on a free port, for `learners` and `admins` (test accounts)."""
+
+    def __init__(self, learners: tuple[str, ...], admins: tuple[str, ...], folder: Path) -> None:
+        self.learners, self.admins = learners, admins
+        for name in (*learners, *admins):
+            remove_account(name)  # a leftover of an interrupted run: start from nothing
+        digest = hashlib.sha1(str(REPO_ROOT).encode()).hexdigest()[:10]
+        self.environment = Path(tempfile.gettempdir()) / f"ros2-course-hub-env-{digest}"
+        self.state = folder / "state"
+        self.port = _free_port()
+        self.config = folder / "hub.yaml"
+        self.config.write_text(
+            f"learners: [{', '.join(learners)}]\nadmins: [{', '.join(admins)}]\n"
+            f"port: {self.port}\nenvironment: {self.environment}\nstate: {self.state}\n"
+            "idle_minutes: 0\n",
+            encoding="utf-8",
+        )
+        argv = [str(REPO_ROOT / ".venv/bin/python"), "-m", "course_lib", "hub"]
+        self.process: ChildProcess = spawn(
+            [*argv, "--config", str(self.config)], name="class-hub", env=independent_env(),
+            cwd=REPO_ROOT, merge_stderr=True,
+        )  # fmt: skip
+        self.url = f"http://127.0.0.1:{self.port}"
+        try:
+            self.process.wait_for_line("The class hub is up", timeout=BUILD_TIMEOUT_S)
+        except Exception as err:
+            self.stop()
+            raise AssertionError(f"the hub did not start:\n{self.process.text()[-4000:]}") from err
+        listed = (self.state / "passwords.txt").read_text(encoding="utf-8").splitlines()
+        self.passwords = dict(line.split(" ", 1) for line in listed)
+
+    def log(self) -> str:
+        """Return what the hub printed (its own log and JupyterHub's)."""
+        return self.process.text()
+
+    def login(self, browser: Any, name: str) -> Any:
+        """Sign `name` in through the hub's login form in a fresh browser context; return the
+        page, on the server the hub started for them."""
+        context = browser.new_context(viewport={"width": 1280, "height": 1000})
+        page = context.new_page()
+        page.goto(f"{self.url}/hub/login")
+        page.fill("#username_input", name)
+        page.fill("#password_input", self.passwords[name])
+        page.click("#login_submit")
+        if name in self.learners:
+            page.wait_for_url(f"**/user/{name}/lab/**", timeout=180_000)
+        return page
+
+    def stop(self) -> dict[str, list[str]]:
+        """Stop the hub as Ctrl-C does, remove the test accounts; return the processes each
+        account still had once the hub had stopped (none, when all is well)."""
+        if self.process.alive:
+            self.process.send_signal(signal.SIGINT)
+            self.process.wait(120.0)
+        self.process.stop(timeout=5.0)
+        left = {name: processes_of(name) for name in (*self.learners, *self.admins)}
+        for name in (*self.learners, *self.admins):
+            remove_account(name)
+        return {name: found for name, found in left.items() if found}
+
+
+def wait_until(test: Any, timeout: float, step: float = 0.5) -> bool:
+    """Poll `test()` until it is true or `timeout` seconds passed; return its last value."""
+    deadline = time.monotonic() + timeout
+    while True:
+        value = test()
+        if value or time.monotonic() > deadline:
+            return bool(value)
+        time.sleep(step)
+
+
+def server_token(name: str) -> str:
+    """Return the hub API token that `name`'s server and kernels hold (root reads it)."""
+    uid = uid_of(name)
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            if entry.stat().st_uid != uid:
+                continue
+            environ = (entry / "environ").read_bytes().split(b"\0")
+        except OSError:
+            continue
+        for item in environ:
+            if item.startswith(b"JUPYTERHUB_API_TOKEN="):
+                return item.split(b"=", 1)[1].decode()
+    raise AssertionError(f"no process of {name} holds a hub token")
