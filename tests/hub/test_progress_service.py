@@ -60,8 +60,11 @@ def rows_of(html: str) -> dict[str, list[tuple[str, str]]]:
 
 @pytest.fixture(scope="module")
 def admin(hub: ClassHub) -> requests.Session:
-    """Return the admin's browser-like session, logged in to the hub."""
-    return hub.login(ADMIN, ADMIN_PASSWORD)
+    """Return the admin's browser-like session, logged in to the hub and to the service."""
+    session = hub.login(ADMIN, ADMIN_PASSWORD)
+    page = session.get(hub.url + PAGE, timeout=10)  # the OAuth login to the service
+    assert page.status_code == 200, page.text
+    return session
 
 
 def servers(hub: ClassHub) -> dict[str, dict[str, str]]:
