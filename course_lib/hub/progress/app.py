@@ -35,7 +35,8 @@ class Refusal(web.HTTPError):
 
 def _message(status_code: int, kwargs: dict[str, Any]) -> str:
     error = kwargs.get("exc_info", (None, None, None))[1]
-    return getattr(error, "message", "") or HTTPStatus(status_code).phrase
+    said = getattr(error, "message", "") or getattr(error, "log_message", "")  # the hub's words
+    return said or HTTPStatus(status_code).phrase
 
 
 @dataclass(frozen=True)
