@@ -225,8 +225,11 @@ class Lesson:
     def self_check(self) -> SelfCheck:
         """Run this lesson's self-check: what passed, and what to try for what did not."""
         from .checks import run_checks
+        from .progress_report import report_progress
 
-        return SelfCheck.of(self.number, run_checks(self))
+        result = SelfCheck.of(self.number, run_checks(self))
+        report_progress(result)  # on a hub only; never raises, never waits
+        return result
 
     # --- lesson-specific tools (thin doors onto their modules) --------------------------------
     def where(self) -> files.Text:

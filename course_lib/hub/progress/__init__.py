@@ -1,0 +1,87 @@
+"""The course-progress service: the instructor's page of every learner's self-checks.
+
+The hub runs it as a managed JupyterHub service (`python -m course_lib.hub.progress`), served
+at `/services/course-progress/`. Lessons' self-checks post their verdict to it with the
+learner's own hub token (see course_lib/lessons/progress_report.py); admins read the page.
+
+This module is what the hub's config calls. It imports neither JupyterHub nor tornado, so a
+learner's kernel may import it for the names below.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+__all__ = [
+    "ACCESS_SCOPE",
+    "DB_ENV",
+    "LESSONS",
+    "PROGRESS_URL_ENV",
+    "SERVICE_NAME",
+    "roles",
+    "service_spec",
+]
+
+SERVICE_NAME = "course-progress"
+# The environment variable that tells a learner's server (and so its kernels) where to post:
+# the service's direct URL, http://127.0.0.1:<port>/services/course-progress/.
+PROGRESS_URL_ENV = "COURSE_PROGRESS_URL"
+DB_ENV = "COURSE_PROGRESS_DB"  # the SQLite file, when --db is not given
+LESSONS = range(1, 12)  # the lessons a record may name: 1 to 11
+ACCESS_SCOPE = f"access:services!service={SERVICE_NAME}"
+
+# JupyterHub 6's default `server` role: what a server token (JUPYTERHUB_API_TOKEN) holds.
+_SERVER_DEFAULT = ("users:activity!user", "access:servers!server")
+
+
+def service_spec(python: str, db_path: Path, port: int) -> dict[str, Any]:
+    """Return the entry for `c.JupyterHub.services`: the managed progress service.
+
+    The hub starts `python -m course_lib.hub.progress --db db_path`, proxies
+    /services/course-progress/ to http://127.0.0.1:port, and gives the service its own API
+    token and OAuth client. `oauth_no_confirm`: the page is part of the course, so an admin is
+    not asked to authorise it. `display`: the hub's home page lists it for admins to click.
+    """
+    return {
+        "name": SERVICE_NAME,
+        "url": f"http://127.0.0.1:{port}",
+        "command": [python, "-m", "course_lib.hub.progress", "--db", str(db_path)],
+        "environment": {DB_ENV: str(db_path)},
+        "oauth_no_confirm": True,
+        "display": True,
+    }
+
+
+def roles() -> list[dict[str, Any]]:
+    """Return the entries for `c.JupyterHub.load_roles` the progress service needs.
+
+    - `course-progress-service` (held by the service): `list:users` and `read:users:name`,
+      so the page has a row for every learner the hub knows and can tell admins apart.
+    - `user` (every user; JupyterHub's default `self` kept): also `access:services!service=
+      course-progress`, so a learner's own tokens may reach the service at all. Reaching it
+      is not seeing it: the page checks that the user is an admin, and a record is accepted
+      only for the token's owner.
+    - `server` (the scopes of every server token, JUPYTERHUB_API_TOKEN, the one kernels
+      inherit): JupyterHub's default two scopes plus the same access scope, so a self-check
+      in a learner's kernel can post. A server token gets only the scopes its owner holds,
+      which is why the `user` role above must hold the access scope as well.
+    """
+    return [
+        {
+            "name": "course-progress-service",
+            "description": "The course-progress service lists the hub's users",
+            "scopes": ["list:users", "read:users:name"],
+            "services": [SERVICE_NAME],
+        },
+        {
+            "name": "user",
+            "description": "Standard user privileges, and posting to course-progress",
+            "scopes": ["self", ACCESS_SCOPE],
+        },
+        {
+            "name": "server",
+            "description": "Post activity, and the lessons' self-checks to course-progress",
+            "scopes": [*_SERVER_DEFAULT, ACCESS_SCOPE],
+        },
+    ]

@@ -1,0 +1,115 @@
+"""The progress records in SQLite: one row per (user, lesson), kept across restarts.
+
+Each row holds the latest verdict (passed or not), when the lesson last passed, and what
+failed last and when. Every write is one transaction (an upsert), so a crash leaves the row
+as it was or as it is meant to be, never half-written. WAL lets the page read while a record
+is written.
+"""
+
+from __future__ import annotations
+
+import sqlite3
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+
+from .record import Record
+
+__all__ = ["LessonState", "ProgressStore", "StoreError"]
+
+_SCHEMA = """
+CREATE TABLE IF NOT EXISTS progress (
+    user TEXT NOT NULL,
+    lesson INTEGER NOT NULL,
+    passed INTEGER NOT NULL,
+    passed_at TEXT,
+    failed TEXT NOT NULL DEFAULT '',
+    failed_at TEXT,
+    PRIMARY KEY (user, lesson)
+)
+"""
+_UPSERT_PASSED = """
+INSERT INTO progress (user, lesson, passed, passed_at) VALUES (?, ?, 1, ?)
+ON CONFLICT (user, lesson) DO UPDATE SET passed = 1, passed_at = excluded.passed_at
+"""
+_UPSERT_FAILED = """
+INSERT INTO progress (user, lesson, passed, failed, failed_at) VALUES (?, ?, 0, ?, ?)
+ON CONFLICT (user, lesson) DO UPDATE
+SET passed = 0, failed = excluded.failed, failed_at = excluded.failed_at
+"""
+
+
+class StoreError(RuntimeError):
+    """The database cannot be opened or written: the message names the file."""
+
+
+@dataclass(frozen=True)
+class LessonState:
+    """One learner's state in one lesson (times are UTC datetimes)."""
+
+    user: str
+    lesson: int
+    passed: bool
+    passed_at: datetime | None
+    failed: str
+    failed_at: datetime | None
+
+    def as_json(self) -> dict[str, object]:
+        """Return the state as JSON-ready data (times in ISO 8601, UTC)."""
+        return {
+            "user": self.user,
+            "lesson": self.lesson,
+            "passed": self.passed,
+            "passed_at": self.passed_at.isoformat() if self.passed_at else None,
+            "failed": self.failed,
+            "failed_at": self.failed_at.isoformat() if self.failed_at else None,
+        }
+
+
+def _time(text: str | None) -> datetime | None:
+    return datetime.fromisoformat(text) if text else None
+
+
+class ProgressStore:
+    """The SQLite file of the progress records (created, with its folder, on first use)."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = Path(path)
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self._db = sqlite3.connect(self.path, isolation_level=None)
+            self._db.execute("PRAGMA journal_mode=WAL")
+            self._db.execute(_SCHEMA)
+        except (OSError, sqlite3.Error) as error:
+            raise StoreError(
+                f"cannot open the progress database {self.path}: {error}. "
+                "Give a writable file with --db (or COURSE_PROGRESS_DB)."
+            ) from None
+
+    def close(self) -> None:
+        """Close the database."""
+        self._db.close()
+
+    def add(self, record: Record, when: datetime | None = None) -> None:
+        """Store a self-check's verdict (one transaction)."""
+        stamp = (when or datetime.now(UTC)).astimezone(UTC).isoformat(timespec="seconds")
+        key = (record.user, record.lesson)
+        try:
+            with self._db:  # BEGIN ... COMMIT, or ROLLBACK on error
+                if record.passed:
+                    self._db.execute(_UPSERT_PASSED, (*key, stamp))
+                else:
+                    self._db.execute(_UPSERT_FAILED, (*key, record.failed, stamp))
+        except sqlite3.Error as error:
+            raise StoreError(f"cannot write to {self.path}: {error}") from None
+
+    def states(self) -> list[LessonState]:
+        """Return every stored state, by user then lesson."""
+        rows = self._db.execute(
+            "SELECT user, lesson, passed, passed_at, failed, failed_at FROM progress "
+            "ORDER BY user, lesson"
+        ).fetchall()
+        return [
+            LessonState(user, lesson, bool(passed), _time(p_at), failed, _time(f_at))
+            for user, lesson, passed, p_at, failed, f_at in rows
+        ]

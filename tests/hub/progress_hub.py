@@ -1,0 +1,223 @@
+"""A real JupyterHub for the tests: the course's progress service, three learners, one admin.
+
+The hub runs from this environment (`python -m jupyterhub`) with configurable-http-proxy from
+npm, the shared-password authenticator, and a stand-in single-user server
+(fake_singleuser.py) so that each learner gets a real server token from a real spawn.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import ctypes
+import fcntl
+import json
+import re
+import secrets
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import requests
+
+from course_lib.hub.progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
+
+PROXY_PACKAGE = "configurable-http-proxy@5.3.0"
+LEARNERS = ("alice", "bob", "carol")
+ADMIN = "teacher"
+PASSWORD = "learners-share-this"  # shared-password: at least 8 characters
+ADMIN_PASSWORD = "the-admin-password-is-32-characters-or-more"
+HERE = Path(__file__).resolve().parent
+_PR_SET_PDEATHSIG = 1
+
+
+def proxy_command(cache: Path) -> str:
+    """Return configurable-http-proxy, installed from npm once into `cache` (shared, locked)."""
+    binary = cache / "node_modules" / ".bin" / "configurable-http-proxy"
+    cache.mkdir(parents=True, exist_ok=True)
+    with open(cache / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not binary.exists():
+            npm = shutil.which("npm")
+            if npm is None:
+                raise RuntimeError(
+                    "npm is missing: the hub tests need configurable-http-proxy from npm. "
+                    "Install Node.js and npm (Debian: apt-get install npm)."
+                )
+            done = subprocess.run(
+                [npm, "install", "--prefix", str(cache), "--no-audit", "--no-fund",
+                 "--loglevel", "error", PROXY_PACKAGE],
+                capture_output=True, text=True, timeout=300, check=False,
+            )  # fmt: skip
+            if done.returncode != 0 or not binary.exists():
+                raise RuntimeError(f"npm install {PROXY_PACKAGE} failed:\n{done.stderr[-2000:]}")
+    return str(binary)
+
+
+def free_port() -> int:
+    """Return a TCP port free on 127.0.0.1 right now."""
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return probe.getsockname()[1]
+
+
+def _die_with_parent() -> None:
+    ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+
+
+class ClassHub:
+    """One hub in `root` (its database, cookie secret, log and the progress records)."""
+
+    def __init__(self, root: Path, proxy: str) -> None:
+        self.root = root
+        self.proxy = proxy
+        self.port, self.hub_port = free_port(), free_port()
+        self.proxy_api_port, self.service_port = free_port(), free_port()
+        self.db = root / "state" / "progress.sqlite"
+        self.servers_out = root / "servers"
+        self.token = secrets.token_hex(16)  # the tests' own service token
+        self.log = root / "hub.log"
+        self.process: subprocess.Popen[bytes] | None = None
+        (root / "jupyterhub_config.py").write_text(self._config())
+
+    @property
+    def url(self) -> str:
+        """Return the hub's public URL (through the proxy), without a trailing slash."""
+        return f"http://127.0.0.1:{self.port}"
+
+    @property
+    def service_url(self) -> str:
+        """Return the progress service's direct URL, as learners' servers get it."""
+        return f"http://127.0.0.1:{self.service_port}/services/{SERVICE_NAME}/"
+
+    def _config(self) -> str:
+        spec = service_spec(sys.executable, self.db, self.service_port)
+        tests = {"name": "course-tests", "api_token": self.token}
+        tests_role = {
+            "name": "course-tests",
+            "scopes": ["admin:users", "admin:servers", "read:roles"],
+            "services": ["course-tests"],
+        }
+        settings = {
+            "JupyterHub.ip": "127.0.0.1",
+            "JupyterHub.port": self.port,
+            "JupyterHub.hub_ip": "127.0.0.1",
+            "JupyterHub.hub_port": self.hub_port,
+            "JupyterHub.db_url": f"sqlite:///{self.root / 'state' / 'jupyterhub.sqlite'}",
+            "JupyterHub.cookie_secret_file": str(self.root / "state" / "cookie_secret"),
+            "JupyterHub.cleanup_servers": True,
+            "JupyterHub.services": [spec, tests],
+            "JupyterHub.load_roles": [*roles(), tests_role],
+            "ConfigurableHTTPProxy.api_url": f"http://127.0.0.1:{self.proxy_api_port}",
+            "ConfigurableHTTPProxy.command": [self.proxy],
+            "ConfigurableHTTPProxy.pid_file": str(self.root / "state" / "proxy.pid"),
+            "JupyterHub.authenticator_class": "shared-password",
+            "SharedPasswordAuthenticator.user_password": PASSWORD,
+            "SharedPasswordAuthenticator.admin_password": ADMIN_PASSWORD,
+            "Authenticator.allowed_users": {*LEARNERS, ADMIN},
+            "Authenticator.admin_users": {ADMIN},
+            "JupyterHub.spawner_class": "simple",
+            "SimpleLocalProcessSpawner.home_dir_template": str(self.root / "homes" / "{username}"),
+            "Spawner.cmd": [sys.executable, str(HERE / "fake_singleuser.py")],
+            "Spawner.environment": {
+                PROGRESS_URL_ENV: self.service_url,
+                "FAKE_SERVER_OUT": str(self.servers_out),
+            },
+        }
+        lines = [f"c.{key} = {value!r}" for key, value in settings.items()]
+        return "c = get_config()  # noqa: F821\n" + "\n".join(lines) + "\n"
+
+    # --- the hub process ----------------------------------------------------------------------
+    def start(self, timeout: float = 60.0) -> None:
+        """Start the hub and wait until it and the progress service answer."""
+        (self.root / "state").mkdir(exist_ok=True)
+        with open(self.log, "ab") as log:
+            self.process = subprocess.Popen(
+                [sys.executable, "-m", "jupyterhub", "-f", "jupyterhub_config.py"],
+                cwd=self.root, stdout=log, stderr=subprocess.STDOUT,
+                preexec_fn=_die_with_parent,
+            )  # fmt: skip
+        deadline = time.monotonic() + timeout
+        through_proxy = f"{self.url}/services/{SERVICE_NAME}/api/records"
+        while not (
+            self._status(f"{self.url}/hub/api/") == 200 and self._status(through_proxy) == 401
+        ):
+            if self.process.poll() is not None or time.monotonic() > deadline:
+                raise RuntimeError(f"the hub did not come up; its log ends:\n{self.log_tail()}")
+            time.sleep(0.2)
+
+    @staticmethod
+    def _status(url: str) -> int:
+        with contextlib.suppress(requests.RequestException):
+            return requests.get(url, timeout=2, allow_redirects=False).status_code
+        return 0
+
+    def stop(self) -> None:
+        """Stop the hub (it stops the proxy, the progress service and every server)."""
+        if self.process is None:
+            return
+        self.process.send_signal(signal.SIGTERM)
+        try:
+            self.process.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
+        self.process = None
+
+    def log_tail(self, lines: int = 40) -> str:
+        """Return the end of the hub's log (for failure messages)."""
+        text = self.log.read_text(errors="replace") if self.log.exists() else ""
+        return "\n".join(text.splitlines()[-lines:])
+
+    def service_pid(self) -> int:
+        """Return the pid of the progress service the hub started."""
+        import psutil
+
+        assert self.process is not None
+        for child in psutil.Process(self.process.pid).children(recursive=True):
+            if "course_lib.hub.progress" in " ".join(child.cmdline()):
+                return child.pid
+        raise RuntimeError("the hub runs no progress service")
+
+    # --- the hub's REST API, with the tests' service token ------------------------------------
+    def api(self, method: str, path: str, **kwargs: Any) -> requests.Response:
+        """Call the hub's REST API (`path` after /hub/api/) as the tests' service."""
+        headers = {"Authorization": f"token {self.token}"}
+        return requests.request(
+            method, f"{self.url}/hub/api/{path}", headers=headers, timeout=30, **kwargs
+        )
+
+    def spawn(self, user: str, timeout: float = 60.0) -> dict[str, str]:
+        """Start `user`'s server; return what it got: its token, user and progress URL."""
+        out = self.servers_out / f"{user}.json"
+        out.unlink(missing_ok=True)
+        answer = self.api("POST", f"users/{user}/server")
+        assert answer.status_code in (201, 202), answer.text
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            model = self.api("GET", f"users/{user}").json()
+            server = model.get("servers", {}).get("", {})
+            if server.get("ready") and out.exists():
+                return json.loads(out.read_text())
+            time.sleep(0.2)
+        raise RuntimeError(
+            f"{user}'s server did not start; the hub's log ends:\n{self.log_tail()}"
+        )
+
+    def login(self, user: str, password: str) -> requests.Session:
+        """Return a browser-like session logged in to the hub as `user` (the login form)."""
+        session = requests.Session()
+        form = session.get(f"{self.url}/hub/login", timeout=30)
+        xsrf = re.search(r'name="_xsrf" value="([^"]+)"', form.text)
+        assert xsrf, form.text[:500]
+        done = session.post(
+            f"{self.url}/hub/login",
+            data={"username": user, "password": password, "_xsrf": xsrf.group(1)},
+            timeout=30,
+        )
+        assert done.ok and "/hub/login" not in done.url, f"{user} could not log in: {done.url}"
+        return session
