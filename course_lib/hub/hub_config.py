@@ -21,10 +21,7 @@ def _tied(*argv: str) -> list[str]:
 
 def _progress(plan: HubPlan) -> tuple[list[dict[str, Any]], list[dict[str, Any]], dict[str, str]]:
     """Return the progress service, its roles and the environment it gives learners' servers."""
-    try:  # TEMP until the progress service lands
-        from .progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
-    except ImportError:
-        return [], [], {}
+    from .progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
 
     spec = service_spec(sys.executable, Path(plan.state) / "progress.sqlite", plan.progress_port)
     spec["command"] = _tied(*spec["command"])

@@ -13,7 +13,6 @@ import fcntl
 import json
 import re
 import secrets
-import shutil
 import signal
 import socket
 import subprocess
@@ -25,8 +24,8 @@ from typing import Any
 import requests
 
 from course_lib.hub.progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
+from course_lib.hub.proxy import install_proxy
 
-PROXY_PACKAGE = "configurable-http-proxy@5.3.0"
 LEARNERS = ("alice", "bob", "carol")
 ADMIN = "teacher"
 PASSWORD = "learners-share-this"  # shared-password: at least 8 characters
@@ -36,26 +35,12 @@ _PR_SET_PDEATHSIG = 1
 
 
 def proxy_command(cache: Path) -> str:
-    """Return configurable-http-proxy, installed from npm once into `cache` (shared, locked)."""
-    binary = cache / "node_modules" / ".bin" / "configurable-http-proxy"
+    """Return the course's pinned configurable-http-proxy, installed from npm once into `cache`
+    (shared by the xdist workers, hence the lock)."""
     cache.mkdir(parents=True, exist_ok=True)
     with open(cache / ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
-        if not binary.exists():
-            npm = shutil.which("npm")
-            if npm is None:
-                raise RuntimeError(
-                    "npm is missing: the hub tests need configurable-http-proxy from npm. "
-                    "Install Node.js and npm (Debian: apt-get install npm)."
-                )
-            done = subprocess.run(
-                [npm, "install", "--prefix", str(cache), "--no-audit", "--no-fund",
-                 "--loglevel", "error", PROXY_PACKAGE],
-                capture_output=True, text=True, timeout=300, check=False,
-            )  # fmt: skip
-            if done.returncode != 0 or not binary.exists():
-                raise RuntimeError(f"npm install {PROXY_PACKAGE} failed:\n{done.stderr[-2000:]}")
-    return str(binary)
+        return str(install_proxy(cache))
 
 
 def free_port() -> int:
