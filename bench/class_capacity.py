@@ -487,7 +487,7 @@ def record(facts: dict[str, object], load_before: tuple[float, ...]) -> None:
     data = {
         "measured": {
             "date": f"{datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC",
-            "on": facts["host"],
+            "host": facts["host"],
             "by": "python -m bench.class_capacity --record",
             "load_average_before": [round(x, 2) for x in load_before],
             "learners_held": facts["held"],
@@ -511,7 +511,9 @@ def record(facts: dict[str, object], load_before: tuple[float, ...]) -> None:
     RECORD.parent.mkdir(exist_ok=True)
     RECORD.write_text(
         "# Written by `python -m bench.class_capacity --record`: what one learner costs.\n"
-        "# per_learner.cpu_cores: the larger of alone and at the largest N that met every goal;\n"
+        "# per_learner.cpu_cores: the larger of alone and at the N the figures come from\n"
+        "# (the largest N that met every goal, else the largest with every simulation at\n"
+        "# real time);\n"
         "# memory_mib_alone: PSS of one learner's processes with no other learner (one pod);\n"
         "# memory_mib_shared: PSS per learner at that N (libraries shared across learners).\n"
         "# kubernetes: what deploy/kubernetes/values.yaml must request (bench.class_capacity\n"
