@@ -10,6 +10,8 @@ image and copied paths. The pure helpers below are also checked on broken inputs
 from __future__ import annotations
 
 import ast
+import importlib
+import importlib.util
 import json
 import re
 from pathlib import Path
@@ -117,12 +119,23 @@ def dockerfile() -> list[tuple[str, str]]:
     return dockerfile_instructions((KUBE / "Dockerfile").read_text())
 
 
-def _service() -> tuple[str, str]:
+def _course_module(name: str) -> Any:
+    """Return module `name` of the course, or None where this branch does not have it yet.
+
+    A module that exists but fails to import fails the test (no silent fallback).
+    """
     try:
-        from course_lib.hub.progress import PROGRESS_URL_ENV, SERVICE_NAME
-    except ImportError:  # the progress service is not on this branch yet
+        found = importlib.util.find_spec(name)
+    except ModuleNotFoundError:
+        found = None
+    return importlib.import_module(name) if found else None
+
+
+def _service() -> tuple[str, str]:
+    progress = _course_module("course_lib.hub.progress")
+    if progress is None:
         return "course-progress", "COURSE_PROGRESS_URL"
-    return SERVICE_NAME, PROGRESS_URL_ENV
+    return progress.SERVICE_NAME, progress.PROGRESS_URL_ENV
 
 
 def test_files_parse(values, progress) -> None:
@@ -138,11 +151,9 @@ def test_singleuser_runs_the_local_hubs_command(values, dockerfile) -> None:
     hub_config = REPO / "course_lib" / "hub" / "hub_config.py"
     if hub_config.exists():
         assert local_spawner_tail(hub_config.read_text()) == LOCAL_TAIL
-    try:
-        from course_lib.hub.singleuser import DEFAULT_URL
-    except ImportError:
-        DEFAULT_URL = "/lab/tree/notebooks/01_setup_check.ipynb"
-    assert values["singleuser"]["defaultUrl"] == DEFAULT_URL
+    singleuser = _course_module("course_lib.hub.singleuser")
+    default_url = "/lab/tree/notebooks/01_setup_check.ipynb"
+    assert values["singleuser"]["defaultUrl"] == getattr(singleuser, "DEFAULT_URL", default_url)
 
 
 def test_progress_service_is_one_name_one_port(values, progress) -> None:
@@ -168,12 +179,9 @@ def test_progress_service_is_one_name_one_port(values, progress) -> None:
     assert container["args"][3:] == ["--db", "/data/progress.sqlite"]
     mounts = {m["mountPath"] for m in container["volumeMounts"]}
     assert "/data" in mounts
-    try:
-        from course_lib.hub.progress import service_spec
-    except ImportError:
-        pass
-    else:  # the local hub's entry: same command (its own python), same OAuth settings
-        spec = service_spec(IMAGE_PYTHON, Path("/data/progress.sqlite"), port)
+    progress_module = _course_module("course_lib.hub.progress")
+    if progress_module is not None:  # the local hub's entry: same command, same OAuth settings
+        spec = progress_module.service_spec(IMAGE_PYTHON, Path("/data/progress.sqlite"), port)
         assert container["args"] == spec["command"]
         entry = values["hub"]["services"][name]
         for key in ("oauth_no_confirm", "display"):
@@ -185,9 +193,8 @@ def test_progress_service_is_one_name_one_port(values, progress) -> None:
 
 def test_roles_mirror_the_progress_service(values) -> None:
     name, _ = _service()
-    try:
-        from course_lib.hub.progress import roles
-    except ImportError:
+    progress_module = _course_module("course_lib.hub.progress")
+    if progress_module is None:
         wanted = [
             {
                 "name": f"{name}-service",
@@ -205,7 +212,7 @@ def test_roles_mirror_the_progress_service(values) -> None:
             },
         ]
     else:
-        wanted = roles()
+        wanted = progress_module.roles()
     loaded = values["hub"]["loadRoles"]
     assert sorted(loaded) == sorted(r["name"] for r in wanted)
     for role in wanted:
