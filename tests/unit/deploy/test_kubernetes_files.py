@@ -222,7 +222,7 @@ def test_roles_mirror_the_progress_service(values) -> None:
 
 
 def test_requests_are_the_measured_figures(values, capacity) -> None:
-    from bench.class_capacity import requests
+    from bench._capacity_report import requests
 
     kube = capacity["kubernetes"]
     per = capacity["per_learner"]
