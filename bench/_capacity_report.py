@@ -1,0 +1,274 @@
+"""The class bench's figures: one round's numbers, the goals, what they mean for a class.
+
+Pure except for printing and `record()` (which writes deploy/capacity.yaml); used by
+bench/class_capacity.py, and by tests/unit/deploy for the Kubernetes requests rule.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import platform
+import statistics
+from dataclasses import dataclass, field
+from datetime import datetime, timezone
+from pathlib import Path
+
+import psutil
+
+RTF_GOAL = 0.95
+GET_GOAL_MS = 20.0
+GOALS = ("real-time factor", "param get median", "param get p99")
+REPO = Path(__file__).resolve().parents[1]
+RECORD = REPO / "deploy" / "capacity.yaml"
+
+
+@dataclass
+class Figures:
+    """What one learner measured over the window."""
+
+    rtf: float
+    gets_ms: list[float]
+    top_speed: float
+    late_s: float
+    cpu_cores: float = 0.0
+    pss_mib: float = 0.0
+    shm_mib: float = 0.0
+    views_per_s: float = 0.0
+    by_process: dict[str, tuple[float, float]] = field(default_factory=dict)  # cores, MiB
+
+
+@dataclass
+class Round:
+    """One N: every learner's figures and the host's."""
+
+    learners: list[Figures]
+    window_s: float
+    host_busy_cores: float
+    others_cores: float
+    load: tuple[float, float, float]
+    mem_used_mib: float
+    failures: list[str] = field(default_factory=list)
+
+    @property
+    def n(self) -> int:
+        return len(self.learners)
+
+    @property
+    def rtf_min(self) -> float:
+        return min(f.rtf for f in self.learners)
+
+    @property
+    def gets_ms(self) -> list[float]:
+        return [g for f in self.learners for g in f.gets_ms]
+
+    @property
+    def pss_mib(self) -> float:
+        return statistics.mean(f.pss_mib for f in self.learners)
+
+    @property
+    def cpu_cores(self) -> float:
+        return statistics.mean(f.cpu_cores for f in self.learners)
+
+
+def percentile(values: list[float], share: float) -> float:
+    """Return the `share` (0..1) percentile of `values`, nearest rank (pure)."""
+    ordered = sorted(values)
+    if not ordered:
+        return math.nan
+    return ordered[max(0, math.ceil(share * len(ordered)) - 1)]
+
+
+def judge(figures: list[Figures]) -> list[str]:
+    """Return the goals these figures fail, one sentence each (pure)."""
+    failures = []
+    worst = min(figures, key=lambda f: f.rtf)
+    if not worst.rtf >= RTF_GOAL:
+        failures.append(f"real-time factor {worst.rtf:.3f} < {RTF_GOAL} for a learner")
+    gets = [g for f in figures for g in f.gets_ms]
+    median, p99 = statistics.median(gets), percentile(gets, 0.99)
+    if not median < GET_GOAL_MS:
+        failures.append(f"param get median {median:.1f} ms >= {GET_GOAL_MS:g} ms")
+    if not p99 < GET_GOAL_MS:
+        failures.append(f"param get p99 {p99:.1f} ms >= {GET_GOAL_MS:g} ms")
+    if any(f.top_speed < 0.15 for f in figures):
+        failures.append("a robot did not reach its drive speed")
+    return failures
+
+
+def print_round(result: Round) -> None:
+    print(f"\nN = {result.n} learners driving at once ({result.window_s:.0f} s window)")
+    for number, f in enumerate(result.learners, 1):
+        late = f", started {f.late_s:.1f} s late" if f.late_s > 0.5 else ""
+        print(
+            f"  learner {number:2d}: real-time factor {f.rtf:5.3f}, param get median "
+            f"{statistics.median(f.gets_ms):5.1f} ms p99 {percentile(f.gets_ms, 0.99):6.1f} ms "
+            f"(n={len(f.gets_ms)}), top speed {f.top_speed:.2f} m/s, CPU {f.cpu_cores:4.2f} "
+            f"cores, PSS {f.pss_mib:4.0f} MiB, /dev/shm {f.shm_mib:4.1f} MiB, "
+            f"3D view {f.views_per_s:4.1f} updates/s{late}"
+        )
+    gets = result.gets_ms
+    print(
+        f"  all: real-time factor min {result.rtf_min:.3f} (goal >= {RTF_GOAL}), param get "
+        f"median {statistics.median(gets):.1f} ms p99 {percentile(gets, 0.99):.1f} ms "
+        f"(goal < {GET_GOAL_MS:g} ms, n={len(gets)}), {result.pss_mib:.0f} MiB PSS and "
+        f"{result.cpu_cores:.2f} cores per learner"
+    )
+    print(
+        f"  host: {result.host_busy_cores:.2f} of {os.cpu_count()} cores busy "
+        f"({result.others_cores:.2f} by processes outside the bench), load average "
+        f"{result.load[0]:.2f} {result.load[1]:.2f} {result.load[2]:.2f}, "
+        f"{result.mem_used_mib / 1024:.1f} GiB in use"
+    )
+    print(f"  goals: {'; '.join(result.failures) if result.failures else 'all met'}")
+
+
+def print_processes(result: Round) -> None:
+    """Print where one learner's CPU and memory go (the mean over the round's learners)."""
+    totals: dict[str, list[float]] = {}
+    for f in result.learners:
+        for label, (cores, mib) in f.by_process.items():
+            entry = totals.setdefault(label, [0.0, 0.0])
+            entry[0] += cores / result.n
+            entry[1] += mib / result.n
+    print(f"  one learner's processes at N = {result.n} (mean):")
+    for label, (cores, mib) in sorted(totals.items(), key=lambda kv: -kv[1][0]):
+        print(f"    {cores:5.2f} cores {mib:6.0f} MiB  {label}")
+
+
+def requests(cpu_cores: float, memory_mib: float) -> dict[str, dict[str, object]]:
+    """Return a learner's Kubernetes requests and limits from the measured figures (pure).
+
+    Guarantees: the measured CPU rounded up to 0.05 cores, the measured memory rounded up to
+    64 MiB. Limits: 2 cores (start-up and workspace builds burst; the drive needs the
+    guarantee only) and twice the memory guarantee, at least 2 GiB (more kernels open,
+    `colcon build`).
+    """
+    cpu = math.ceil(cpu_cores * 20 - 1e-9) / 20
+    memory = math.ceil(memory_mib / 64) * 64
+    return {
+        "guarantee": {"cpu": cpu, "memory": f"{memory}M"},
+        "limit": {"cpu": 2.0, "memory": f"{max(2 * memory, 2048)}M"},
+    }
+
+
+def summary(rounds: list[Round]) -> dict[str, object]:
+    """Return the figures of the whole run, as deploy/capacity.yaml records them (pure)."""
+    passed = [r for r in rounds if not r.failures]
+    failed = next((r for r in rounds if r.failures), None)
+    realtime = [r for r in rounds if r.rtf_min >= RTF_GOAL]  # every simulation kept up
+    basis = passed[-1] if passed else (realtime[-1] if realtime else rounds[0])
+    alone = rounds[0]
+    cores = os.cpu_count() or 1
+    memory_gib = psutil.virtual_memory().total / 2**30
+
+    def first(goal: str) -> int | None:
+        return next((r.n for r in rounds if any(f.startswith(goal) for f in r.failures)), None)
+
+    return {
+        "first_failing": {goal: first(goal) for goal in GOALS},
+        "held": passed[-1].n if passed else 0,
+        "held_realtime": realtime[-1].n if realtime else 0,
+        "first_failing_n": failed.n if failed else None,
+        "why": "; ".join(failed.failures) if failed else "",
+        "basis_n": basis.n,
+        "cpu_cores_alone": round(alone.cpu_cores, 3),
+        "memory_mib_alone": round(alone.pss_mib),
+        "cpu_cores_per_learner": round(basis.cpu_cores, 3),
+        "memory_mib_per_learner": round(basis.pss_mib),
+        "learners_per_core_measured": round((passed[-1].n if passed else 0) / cores, 2),
+        "learners_per_core_realtime": round((realtime[-1].n if realtime else 0) / cores, 2),
+        "learners_per_core_cpu": round(1 / basis.cpu_cores, 2) if basis.cpu_cores else None,
+        "learners_per_gib": round(1024 / basis.pss_mib, 2),
+        "host": f"{cores} cores ({platform.processor() or platform.machine()}), "
+        f"{memory_gib:.1f} GiB",
+        "rounds": [
+            {
+                "n": r.n,
+                "rtf_min": round(r.rtf_min, 3),
+                "get_median_ms": round(statistics.median(r.gets_ms), 1),
+                "get_p99_ms": round(percentile(r.gets_ms, 0.99), 1),
+                "mib_per_learner": round(r.pss_mib),
+                "cpu_cores_per_learner": round(r.cpu_cores, 3),
+                "load_average": [round(x, 2) for x in r.load],
+                "others_cores": round(r.others_cores, 2),
+                "goals": "; ".join(r.failures) or "all met",
+            }
+            for r in rounds
+        ],
+    }
+
+
+def print_class(facts: dict[str, object], load_before: tuple[float, ...], took: float) -> None:
+    print("\nWhat it means for a class (this host)")
+    print(
+        f"  held {facts['held']} learners with every goal met; first failing N: "
+        f"{facts['first_failing_n'] or 'none up to the cap'}"
+        + (f" ({facts['why']})" if facts["why"] else "")
+    )
+    firsts = facts["first_failing"]
+    assert isinstance(firsts, dict)
+    print(
+        "  first failing N by goal: "
+        + ", ".join(f"{goal} {n or 'none'}" for goal, n in firsts.items())
+    )
+    print(
+        f"  per learner at N = {facts['basis_n']}: {facts['cpu_cores_per_learner']} cores, "
+        f"{facts['memory_mib_per_learner']} MiB PSS (alone: {facts['cpu_cores_alone']} cores, "
+        f"{facts['memory_mib_alone']} MiB, what one pod of its own needs)"
+    )
+    print(
+        f"  learners per core: {facts['learners_per_core_measured']} measured (all goals met), "
+        f"{facts['learners_per_core_realtime']} with every simulation at real time "
+        f"(N = {facts['held_realtime']}), {facts['learners_per_core_cpu']} by CPU share alone; "
+        "learners per GiB: "
+        f"{facts['learners_per_gib']}"
+    )
+    print(
+        f"  load average before the bench: {load_before[0]:.2f} {load_before[1]:.2f} "
+        f"{load_before[2]:.2f}; bench took {took:.0f} s"
+    )
+
+
+def record(facts: dict[str, object], load_before: tuple[float, ...]) -> None:
+    """Write deploy/capacity.yaml from this run's figures."""
+    import yaml
+
+    cpu = max(float(facts["cpu_cores_alone"]), float(facts["cpu_cores_per_learner"]))  # type: ignore[arg-type]
+    data = {
+        "measured": {
+            "date": f"{datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC",
+            "host": facts["host"],
+            "by": "python -m bench.class_capacity --record",
+            "load_average_before": [round(x, 2) for x in load_before],
+            "learners_held": facts["held"],
+            "first_failing_n": facts["first_failing_n"],
+            "why": facts["why"],
+            "first_failing_n_by_goal": facts["first_failing"],
+            "rounds": facts["rounds"],
+        },
+        "per_learner": {
+            "cpu_cores": cpu,
+            "memory_mib_alone": facts["memory_mib_alone"],
+            "memory_mib_shared": facts["memory_mib_per_learner"],
+        },
+        "class": {
+            "learners_per_core": facts["learners_per_core_measured"],
+            "learners_per_core_realtime": facts["learners_per_core_realtime"],
+            "learners_per_gib": facts["learners_per_gib"],
+        },
+        "kubernetes": requests(cpu, float(facts["memory_mib_alone"])),  # type: ignore[arg-type]
+    }
+    RECORD.parent.mkdir(exist_ok=True)
+    RECORD.write_text(
+        "# Written by `python -m bench.class_capacity --record`: what one learner costs.\n"
+        "# per_learner.cpu_cores: the larger of alone and at the N the figures come from\n"
+        "# (the largest N that met every goal, else the largest with every simulation at\n"
+        "# real time);\n"
+        "# memory_mib_alone: PSS of one learner's processes with no other learner (one pod);\n"
+        "# memory_mib_shared: PSS per learner at that N (libraries shared across learners).\n"
+        "# kubernetes: what deploy/kubernetes/values.yaml must request (requests() in\n"
+        "# bench/_capacity_report.py; tests/unit/deploy/test_kubernetes_files.py checks).\n"
+        + yaml.safe_dump(data, sort_keys=False)
+    )
+    print(f"\nwrote {RECORD.relative_to(REPO)}")

@@ -1,0 +1,52 @@
+"""The class bench's pure parts: real-time factor, percentile, goals, requests, N steps."""
+
+from __future__ import annotations
+
+import math
+
+from bench._capacity_kernel import real_time_factor
+from bench._capacity_report import Figures, judge, percentile, requests
+from bench.class_capacity import sizes
+
+
+def _figures(rtf: float = 1.0, gets_ms: float = 5.0, top_speed: float = 0.2) -> Figures:
+    return Figures(rtf=rtf, gets_ms=[gets_ms] * 100, top_speed=top_speed, late_s=0.0)
+
+
+def test_real_time_factor_is_the_slope_of_sim_over_wall_time() -> None:
+    assert real_time_factor([(t, 3.0 + t) for t in range(10)]) == 1.0
+    assert real_time_factor([(t, 0.5 * t) for t in range(10)]) == 0.5
+    assert math.isnan(real_time_factor([(0.0, 0.0)]))
+
+
+def test_percentile_is_nearest_rank() -> None:
+    values = [float(v) for v in range(1, 101)]
+    assert percentile(values, 0.99) == 99.0
+    assert percentile(values, 0.5) == 50.0
+    assert math.isnan(percentile([], 0.5))
+
+
+def test_each_goal_fails_on_its_own() -> None:
+    assert judge([_figures(), _figures()]) == []
+    assert judge([_figures(), _figures(rtf=0.94)])[0].startswith("real-time factor 0.940")
+    slow = judge([_figures(gets_ms=25.0)])
+    assert [f.split(" ", 3)[2] for f in slow] == ["median", "p99"]
+    tail = _figures()
+    tail.gets_ms[-2:] = [30.0, 30.0]  # two in a hundred: the p99 only
+    assert judge([tail]) == ["param get p99 30.0 ms >= 20 ms"]
+    assert judge([_figures(top_speed=0.0)]) == ["a robot did not reach its drive speed"]
+
+
+def test_requests_round_up_the_measured_figures() -> None:
+    assert requests(0.551, 408) == {
+        "guarantee": {"cpu": 0.6, "memory": "448M"},
+        "limit": {"cpu": 2.0, "memory": "2048M"},
+    }
+    assert requests(0.5, 384)["guarantee"] == {"cpu": 0.5, "memory": "384M"}
+    assert requests(0.51, 385)["guarantee"] == {"cpu": 0.55, "memory": "448M"}
+    assert requests(0.9, 1500)["limit"]["memory"] == "3072M"
+
+
+def test_learner_counts_double_up_to_the_cap() -> None:
+    assert sizes(16) == [1, 2, 4, 8, 16]
+    assert sizes(12) == [1, 2, 4, 8]
