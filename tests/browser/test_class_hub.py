@@ -19,7 +19,7 @@ from typing import Any
 import pytest
 from class_hub import ClassHub, processes_of, server_token, uid_of, wait_until
 from lab_server import ARTIFACTS
-from notebook_ui import add_cell, run_all_cells, wait_all_ran
+from notebook_ui import add_cell, run_all_cells, run_cell, wait_all_ran
 from pixels import is_blank
 from terminal import Terminal
 from view import MOVED, VIEW, change_within, shot
@@ -82,9 +82,11 @@ def _lesson_7_passed(page: Any, artifacts: Path) -> None:
     assert "Everything passed (2 of 2)" in body, body[-1500:]
 
 
-def _view_moves(page: Any, artifacts: Path, speed: float) -> float:
-    """Drive at `speed` for a few seconds; return how much the 3D view changed meanwhile."""
-    add_cell(page, f"%ros2 param set /param_vel_node velocity {speed}")
+def _view_moves(page: Any, artifacts: Path) -> float:
+    """Put the robot back at its start (the world's cell does), drive it forward for a few
+    seconds and return how much the 3D view changed meanwhile."""
+    run_cell(page, "world = lesson.world()")
+    add_cell(page, "%ros2 param set /param_vel_node velocity 0.2")
     page.locator(VIEW).first.scroll_into_view_if_needed()
     first, path = shot(page, artifacts, "view_moving_0")
     assert not is_blank(first), f"the 3D view is blank: {path}"
@@ -101,8 +103,7 @@ def test_two_learners_each_drive_their_own_robot(
     domains = {}
     for name, page in pages.items():
         _lesson_7_passed(page, artifacts)
-        # backwards: the lesson drove the robot towards the box ahead of it
-        assert _view_moves(page, artifacts, -0.2) > MOVED, f"{name}'s robot did not move"
+        assert _view_moves(page, artifacts) > MOVED, f"{name}'s robot did not move in the view"
     for name, page in pages.items():  # both nodes run now: each terminal sees its own only
         terminal = Terminal(page, f"{hub.url}/user/{name}", "")
         try:
@@ -140,6 +141,7 @@ def test_a_learner_cannot_open_another_learners_lab_view_or_progress(
     )
     with pytest.raises(urllib.error.HTTPError) as refused:
         urllib.request.urlopen(request, timeout=10)
+    refused.value.close()
     assert refused.value.code == 403, refused.value.code
 
 
@@ -170,7 +172,7 @@ def test_stopping_one_server_leaves_nothing_of_it_and_spares_the_other(
     assert wait_until(left, 30.0), f"Bob's processes outlived his server: {processes_of(BOB)}"
     assert set(processes_of(ALICE)) >= set(alice_before), "stopping Bob disturbed Alice"
     alice = pages[ALICE]
-    assert _view_moves(alice, artifacts, 0.2) > MOVED, "Alice's robot stopped with Bob's server"
+    assert _view_moves(alice, artifacts) > MOVED, "Alice's robot stopped with Bob's server"
 
 
 def test_stopping_the_hub_stops_every_learners_server(hub: ClassHub) -> None:
