@@ -27,6 +27,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import ProcessStartError
+from .signalling import send
 
 __all__ = [
     "NAME_ENV",
@@ -62,13 +63,24 @@ class OutputLine:
     time: float
 
 
-def _start_time(pid: int) -> str | None:
-    """Return the start time of live process `pid` (field 22 of /proc/<pid>/stat), or None."""
+def _stat(pid: int) -> list[str] | None:
+    """Return the fields of /proc/<pid>/stat after the command name, or None if no such pid."""
     try:
-        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
     except (OSError, IndexError):
         return None
-    return None if fields[0] in ("Z", "X") else fields[19]
+
+
+def _start_time(pid: int) -> str | None:
+    """Return the start time of live process `pid` (field 22 of /proc/<pid>/stat), or None."""
+    fields = _stat(pid)
+    return None if fields is None or fields[0] in ("Z", "X") else fields[19]
+
+
+def _holder_start(pid: int) -> str | None:
+    """Return the start time of whatever process holds `pid`, a zombie too; None if none."""
+    fields = _stat(pid)
+    return None if fields is None else fields[19]
 
 
 def pid_alive(pid: int) -> bool:
@@ -148,6 +160,9 @@ class ChildProcess:
 
     def _attach(self, popen: subprocess.Popen[bytes]) -> None:
         self._popen = popen
+        # Read while the child is not reaped yet, so `popen.pid` still names it.
+        self._started = _holder_start(popen.pid)
+        self._group_cleared = False
         self._readers = [
             threading.Thread(target=self._read, args=(pipe, stream), daemon=True)
             for pipe, stream in ((popen.stdout, "stdout"), (popen.stderr, "stderr"))
@@ -239,11 +254,11 @@ class ChildProcess:
             reader.join(timeout=1.0)
         return code
 
-    def send_signal(self, sig: int) -> None:
+    def send_signal(self, sig: int, *, reason: str = "") -> None:
         """Send `sig` to the child's whole process group."""
         if self.alive:
             with contextlib.suppress(ProcessLookupError, PermissionError):
-                os.killpg(self.pid, sig)
+                send(self.pid, sig, group=True, reason=reason or f"stopping {self.name}")
 
     def stop(self, *, timeout: float = 5.0) -> int:
         """Stop the child like Ctrl-C would, escalating to SIGTERM and SIGKILL; idempotent."""
@@ -253,9 +268,28 @@ class ChildProcess:
             self.send_signal(sig)
             self.wait(grace)
         code = self.wait(timeout=2.0)
-        with contextlib.suppress(ProcessLookupError, PermissionError):
-            os.killpg(self.pid, signal.SIGKILL)  # grandchildren left in the group
+        self._kill_group_left()
         return code if code is not None else -signal.SIGKILL
+
+    def _kill_group_left(self) -> None:
+        """SIGKILL what the child left in its process group (grandchildren), never another's.
+
+        Once the child is reaped its pid is free, and a later process may get it: everything
+        `spawn` starts leads a group of its own, so a `killpg` on that pid would kill another
+        session's process (another lab's JupyterLab, another kernel's node). The group is
+        killed only while no other process holds the pid, and only once after the child ended.
+        """
+        if self._group_cleared:
+            return
+        holder = _holder_start(self.pid)
+        if holder is not None and holder != self._started:
+            self._group_cleared = True  # the pid names another process now: not our group
+            return
+        self._group_cleared = self._popen.poll() is not None
+        with contextlib.suppress(ProcessLookupError, PermissionError):
+            send(
+                self.pid, signal.SIGKILL, group=True, reason=f"what {self.name} left in its group"
+            )
 
     def restart(self, *, timeout: float = 5.0) -> ChildProcess:
         """Stop the child if it still runs, then start the same command again in this handle.
@@ -327,16 +361,21 @@ def process_environ(pid: int) -> dict[str, str]:
     return {k.decode(errors="replace"): v.decode(errors="replace") for k, _, v in pairs}
 
 
-def _orphans() -> list[int]:
-    """Return this user's processes whose owner tag names a process that is gone."""
+def _orphans() -> dict[int, str]:
+    """Return this user's processes whose owner tag names a process that is gone.
+
+    Each with its start time, so that a pid reused since is never taken for it.
+    """
     me, uid = os.getpid(), os.getuid()
-    found = []
+    found = {}
     for entry in Path("/proc").iterdir():
         if entry.name.isdigit() and int(entry.name) != me and _uid(entry) == uid:
-            env = process_environ(int(entry.name))
+            pid = int(entry.name)
+            started = _start_time(pid)
+            env = process_environ(pid)
             tag = env.get(OWNER_ENV)
-            if tag and not owner_alive(tag, env.get(OWNER_NS_ENV, "")):
-                found.append(int(entry.name))
+            if started and tag and not owner_alive(tag, env.get(OWNER_NS_ENV, "")):
+                found[pid] = started
     return found
 
 
@@ -356,11 +395,13 @@ def reap_orphans(*, rounds: int = 4) -> list[int]:
     killed: list[int] = []
     for _ in range(rounds):
         batch = _orphans()
-        for pid in batch:
+        for pid, started in batch.items():
+            if _start_time(pid) != started:
+                continue  # gone since, and its pid perhaps another process's now
             with contextlib.suppress(ProcessLookupError, PermissionError):
-                os.kill(pid, signal.SIGKILL)
+                send(pid, signal.SIGKILL, reason="a leftover: its owner is gone")
         if not batch:
             break
-        killed += batch
+        killed += list(batch)
         time.sleep(0.02)  # let the kernel mark them dead before judging their children
     return killed

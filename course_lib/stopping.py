@@ -9,12 +9,12 @@ own (every `spawn`ed child) is signalled with its group, as `ChildProcess.stop` 
 from __future__ import annotations
 
 import contextlib
-import os
 import signal
 import time
 from dataclasses import dataclass, field
 
 from .ownership import CourseProcess, course_processes, current_lab, read_process
+from .signalling import send
 
 __all__ = ["StopReport", "Stopped", "stop_course"]
 
@@ -67,11 +67,9 @@ def _same(proc: CourseProcess) -> bool:
 def _signal(proc: CourseProcess, sig: signal.Signals) -> None:
     if not _same(proc):  # gone, or its pid reused: never signal someone else
         return
+    reason = f"`make stop`: {proc.name} is a course process ({proc.reason})"
     with contextlib.suppress(ProcessLookupError, PermissionError):
-        if proc.info.pgid == proc.pid:
-            os.killpg(proc.pid, sig)
-        else:
-            os.kill(proc.pid, sig)
+        send(proc.pid, sig, group=proc.info.pgid == proc.pid, reason=reason)
 
 
 def _wait_gone(pending: dict[int, CourseProcess], timeout: float) -> list[int]:

@@ -7,13 +7,13 @@ launch the way Ctrl-C does (launch's own shutdown messages, then every node stop
 from __future__ import annotations
 
 import contextlib
-import os
 import signal
 import sys
 from collections.abc import Callable
 from typing import Any
 
 from ..processes import ChildProcess, OutputLine
+from ..signalling import send
 
 __all__ = ["LaunchHandle", "launch"]
 
@@ -64,7 +64,7 @@ class LaunchHandle:
         """Stop like Ctrl-C: SIGINT to launch, which stops its nodes; escalate if stuck."""
         if self.child.alive:
             with contextlib.suppress(ProcessLookupError):
-                os.kill(self.child.pid, signal.SIGINT)
+                send(self.child.pid, signal.SIGINT, reason="stopping the launch (Ctrl-C)")
             if self.child.wait(timeout) is not None:
                 self.child.stop(timeout=1.0)  # nothing left in the group
                 return self.child.returncode  # type: ignore[return-value]

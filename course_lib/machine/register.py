@@ -8,7 +8,6 @@ pid is never mistaken for the node, and nothing but that process is ever signall
 from __future__ import annotations
 
 import contextlib
-import os
 import re
 import signal
 import threading
@@ -16,6 +15,7 @@ import time
 from dataclasses import asdict, dataclass
 
 from ..processes import owner_tag
+from ..signalling import send
 
 __all__ = ["NodeRecord", "NodeRegister", "node_name_from_log", "stop_tagged"]
 
@@ -51,11 +51,12 @@ def stop_tagged(tag: str, *, grace_s: float = 5.0) -> bool:
     for sig, wait_s in ((signal.SIGINT, grace_s), (signal.SIGTERM, 2.0), (signal.SIGKILL, 2.0)):
         if owner_tag(pid) != tag:
             return True
+        reason = "a lesson takes over the node it runs"
         with contextlib.suppress(ProcessLookupError, PermissionError):
-            try:
-                os.killpg(pid, sig)  # lessons start nodes as leaders of their own group
+            try:  # lessons start nodes as leaders of their own group
+                send(pid, sig, group=True, reason=reason)
             except ProcessLookupError:
-                os.kill(pid, sig)
+                send(pid, sig, reason=reason)
         deadline = time.monotonic() + wait_s
         while owner_tag(pid) == tag and time.monotonic() < deadline:
             time.sleep(0.02)
