@@ -18,6 +18,7 @@ from pathlib import Path
 import yaml
 
 from ..errors import ConfigError, CourseError
+from ..signalling import send
 from .accounts import ensure_accounts, refuse_system_accounts
 from .environment import build_environment, check_world_executable
 from .plan import PLAN_ENV, HubPlan, write_plan
@@ -122,11 +123,11 @@ def _wait_ready(hub: subprocess.Popen[bytes], url: str) -> None:
 
 def _stop(hub: subprocess.Popen[bytes]) -> int:
     if hub.poll() is None:
-        hub.send_signal(signal.SIGTERM)
+        send(hub.pid, signal.SIGTERM, reason="the class hub stops (it stops every server)")
         try:
             hub.wait(STOP_TIMEOUT_S)
         except subprocess.TimeoutExpired:
-            hub.kill()
+            send(hub.pid, signal.SIGKILL, reason=f"the hub did not stop in {STOP_TIMEOUT_S:.0f} s")
             hub.wait()
     return hub.returncode or 0
 
