@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import asyncio
 import pwd
+import signal
 from collections.abc import Callable
 from typing import Any
 
 from jupyterhub.spawner import LocalProcessSpawner, set_user_setuid
 
+from ..signalling import send
 from .tied import tie_to_parent
 
 __all__ = ["CourseSpawner"]
@@ -44,7 +46,7 @@ class CourseSpawner(LocalProcessSpawner):
         try:
             output, _ = await asyncio.wait_for(process.communicate(), STOP_TIMEOUT_S)
         except TimeoutError:
-            process.kill()
+            send(process.pid, signal.SIGKILL, reason="`course_lib stop` after a server hung")
             self.log.warning("Stopping %s's leftover processes took too long", self.user.name)
             return
         text = output.decode(errors="replace").strip()
