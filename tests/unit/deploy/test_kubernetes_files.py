@@ -286,7 +286,7 @@ def test_readme_section_is_there() -> None:
     [
         ("python:3.11-slim-bookworm", False),
         ("library/python:3.11", False),
-        ("quay.io/jupyter/base", True),
+        ("images.example.org/jupyter/base", True),
         ("registry.local:5000/python:3.11", True),
         ("localhost/python", True),
     ],
