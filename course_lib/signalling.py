@@ -27,7 +27,8 @@ def _command(pid: int) -> str:
         raw = Path(f"/proc/{pid}/cmdline").read_bytes()
     except OSError:
         return "no such process"
-    return raw.replace(b"\0", b" ").decode(errors="replace").strip()[:160] or "no such process"
+    words = raw.replace(b"\0", b" ").decode(errors="replace").split()  # one line, always
+    return " ".join(words)[:160] or "no such process"
 
 
 def _sender() -> str:

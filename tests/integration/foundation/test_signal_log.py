@@ -17,14 +17,14 @@ def test_stopping_a_child_logs_each_signal_with_sender_target_and_reason(
 ) -> None:
     log = tmp_path / "signals.log"
     monkeypatch.setenv(LOG_ENV, str(log))
-    child = spawn([sys.executable, "-c", "import time; time.sleep(60)"], name="my-node")
+    program = "import time\ntime.sleep(60)"  # a command line of two lines: still one log line
+    child = spawn([sys.executable, "-c", program], name="my-node")
     pid = child.pid
     child.stop(timeout=5.0)
     lines = log.read_text().splitlines()
     assert len(lines) == 2, lines  # SIGINT, then SIGKILL for what it left in its group
     sent = re.escape(f"sends SIGINT to group {pid} (")
-    assert re.search(
-        rf"^\d+\.\d{{3}} pid \d+ \(\S+\) {sent}.*sleep.*\): stopping my-node", lines[0]
-    )
+    command = re.escape("-c import time time.sleep(60)): stopping my-node")
+    assert re.search(rf"^\d+\.\d{{3}} pid \d+ \(\S+\) {sent}.*{command}", lines[0])
     assert f"sends SIGKILL to group {pid} (no such process): what my-node left" in lines[1]
     assert "[test tests/integration/foundation/test_signal_log.py::" in lines[0]
