@@ -3,6 +3,7 @@ every Unix user may execute (a root-private interpreter would give them "Permiss
 
 from __future__ import annotations
 
+import fcntl
 import filecmp
 import os
 import shutil
@@ -130,6 +131,12 @@ def build_environment(
                 hint="set `environment:` in config/hub.yaml to a folder outside private homes, "
                 "e.g. /opt/ros2-params-course.",
             )
+    with open(environment / ".build.lock", "w") as lock:  # one build at a time
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        return _build_locked(environment, python, say)
+
+
+def _build_locked(environment: Path, python: Path, say: Callable[[str], None]) -> Path:
     copy = course_copy(environment)
     if copy.resolve() != REPO_ROOT.resolve():
         copied = _sync(REPO_ROOT, copy)

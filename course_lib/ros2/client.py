@@ -156,6 +156,18 @@ class RosClient:
         """
         wait_settled(self.graph_view, born=self._born, timing=self._timing, min_age_s=min_age_s)
 
+    def wait_all_seen(self, timeout: float) -> bool:
+        """Wait (at most `timeout` s) until this client has discovered every participant its
+        domain has on this host, e.g. a node just started; return whether it has."""
+        deadline = time.monotonic() + timeout
+        while True:
+            view = self.graph_view()
+            if not view.missing_participants and not view.unknown_endpoints:
+                return True
+            if time.monotonic() >= deadline:
+                return False
+            time.sleep(_POLL_S)
+
     def graph_view(self) -> GraphView:
         """Return the node and topic names seen, and what is known to be missing from them."""
         node = self.node

@@ -43,6 +43,9 @@ class CommandResult:
         return "".join(parts) + "</div>"
 
 
+RUN_SEEN_WAIT_S = 3.0  # at most, after the node's first line, until this kernel has seen it
+
+
 def _background_run(cmd: list[str], name: str, ctx: Any) -> int:
     """Start `ros2 run`'s executable as a session child and show its first lines.
 
@@ -58,6 +61,10 @@ def _background_run(cmd: list[str], name: str, ctx: Any) -> int:
     child = get_session().spawn(cmd, name=name, cwd=ctx.cwd)
     child.wait_for_line(lambda _line: True, timeout=3.0)
     remember(child, name)
+    if child.alive:  # the next command (`%ros2 node list`) sees the new node, even under load
+        from .api import client
+
+        client().wait_all_seen(timeout=RUN_SEEN_WAIT_S)
     for line in child.lines[:5]:
         (ctx.console.err if line.stream == "stderr" else ctx.console.out)(line.text + "\n")
     return 0 if child.alive else int(child.returncode or 0)

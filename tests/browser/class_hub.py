@@ -23,7 +23,15 @@ from course_lib.paths import REPO_ROOT
 from course_lib.processes import ChildProcess, spawn
 from course_lib.testing import independent_env
 
-__all__ = ["ClassHub", "processes_of", "server_token", "uid_of", "wait_until"]
+__all__ = [
+    "ClassHub",
+    "hub_environment",
+    "processes_of",
+    "server_token",
+    "start_prebuild",
+    "uid_of",
+    "wait_until",
+]
 
 BUILD_TIMEOUT_S = 1200.0  # the first build of the learners' environment (pip, colcon)
 
@@ -69,6 +77,25 @@ def remove_account(name: str) -> None:
     subprocess.run(["userdel", "--remove", name], check=False, capture_output=True)
 
 
+def hub_environment() -> Path:
+    """Return where the tests build the learners' environment (one per clone, kept)."""
+    digest = hashlib.sha1(str(REPO_ROOT).encode()).hexdigest()[:10]
+    return Path(tempfile.gettempdir()) / f"ros2-course-hub-env-{digest}"
+
+
+def start_prebuild() -> ChildProcess:
+    """Start building the learners' environment now, while other tests run (its lock makes
+    the hub's own build wait for it, then find nothing left to do)."""
+    code = (
+        "import sys; from pathlib import Path; "
+        "from course_lib.hub.environment import build_environment; "
+        "build_environment(Path(sys.argv[1]), Path(sys.argv[2]))"
+    )
+    python = "/usr/bin/python3.11"  # the hub's default interpreter (config/hub.yaml)
+    argv = [str(REPO_ROOT / ".venv/bin/python"), "-c", code, str(hub_environment()), python]
+    return spawn(argv, name="hub-prebuild", env=independent_env(), cwd=REPO_ROOT)
+
+
 class ClassHub:
     """The course's hub on a free port, for `learners` and `admins` (test accounts)."""
 
@@ -76,8 +103,7 @@ class ClassHub:
         self.learners, self.admins = learners, admins
         for name in (*learners, *admins):
             remove_account(name)  # a leftover of an interrupted run: start from nothing
-        digest = hashlib.sha1(str(REPO_ROOT).encode()).hexdigest()[:10]
-        self.environment = Path(tempfile.gettempdir()) / f"ros2-course-hub-env-{digest}"
+        self.environment = hub_environment()
         self.state = folder / "state"
         self.port = _free_port()
         self.config = folder / "hub.yaml"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import shutil
 from collections.abc import Iterator
 from pathlib import Path
@@ -23,9 +24,19 @@ FLAGS = [
 ]
 
 
+_PREBUILD: list[object] = []  # the learners' environment's build, started at collection
+
+
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """Skip browser tests, saying how to enable them, where chromium is missing."""
+    """Skip browser tests, saying how to enable them, where chromium is missing; start
+    building the class hub's environment at once if its test is to run (minutes, mostly
+    pip, that then overlap the other tests)."""
     if CHROMIUM is not None:
+        hub_test = any(item.path.name == "test_class_hub.py" for item in items)
+        if hub_test and os.geteuid() == 0 and not _PREBUILD:
+            from class_hub import start_prebuild
+
+            _PREBUILD.append(start_prebuild())
         return
     skip = pytest.mark.skip(reason=INSTALL_HINT)
     for item in items:
