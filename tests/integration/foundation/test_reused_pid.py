@@ -25,6 +25,9 @@ import json, subprocess, time
 from course_lib.processes import spawn
 
 def stranger_with_pid(pid):
+    # A start time counts clock ticks (10 ms): a real reuse of a pid comes a whole wrap of the
+    # pid space later, never within the tick the child started in, so neither may this one.
+    time.sleep(0.05)
     with open("/proc/sys/kernel/ns_last_pid", "w") as f:
         f.write(str(pid - 1))
     stranger = subprocess.Popen(["sleep", "60"], start_new_session=True)
