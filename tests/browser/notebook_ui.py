@@ -12,7 +12,12 @@ _BUSY_PROMPTS = (
 
 def run_all_cells(page) -> None:  # type: ignore[no-untyped-def]
     """Wait for an idle kernel, then Run > Run All Cells from the menu."""
-    page.get_by_text("Python 3 (ipykernel) | Idle").wait_for(timeout=60_000)
+    idle = page.get_by_text("Python 3 (ipykernel) | Idle")
+    choose = page.get_by_role("button", name="Select", exact=True)
+    idle.or_(choose).first.wait_for(timeout=60_000)
+    if choose.is_visible():  # a notebook whose kernel was shut down asks for one: Python 3
+        choose.click()
+        idle.wait_for(timeout=60_000)
     page.get_by_role("menuitem", name="Run", exact=True).click()
     page.get_by_role("menuitem", name="Run All Cells", exact=True).click()
 

@@ -26,6 +26,15 @@ LESSONS = ["03_the_simulation.ipynb", "07_move_the_robot.ipynb"]
 LIVE_VIEW = f".jp-NotebookPanel:visible {VIEW}"
 
 
+@pytest.fixture
+def page(browser, lab):  # type: ignore[no-untyped-def]
+    """A fresh tab on lesson 3 for each attempt (a rerun must not inherit the last one's)."""
+    tab = browser.new_page(viewport={"width": 1280, "height": 1000})
+    tab.goto(lab.lab_url(LESSONS[0]))
+    yield tab
+    tab.close()
+
+
 def _view_moves(page, artifacts: Path) -> float:  # type: ignore[no-untyped-def]
     page.locator(LIVE_VIEW).first.scroll_into_view_if_needed()
     first, path = shot(page, artifacts, "view_moving_0", LIVE_VIEW)
