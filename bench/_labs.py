@@ -9,6 +9,7 @@ if the bench was killed before it could shut the kernel down.
 from __future__ import annotations
 
 import os
+import queue
 import re
 import sys
 import time
@@ -105,7 +106,7 @@ class LabKernel:
                 raise TimeoutError(f"a cell did not finish within {timeout:g} s")
             try:
                 msg = self.client.get_iopub_msg(timeout=remaining)
-            except Exception:  # queue.Empty: the deadline is checked above
+            except queue.Empty:  # the deadline is checked above
                 continue
             if msg["parent_header"].get("msg_id") != msg_id:
                 continue

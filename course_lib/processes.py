@@ -131,11 +131,17 @@ def owner_alive(tag: str, namespace: str = "") -> bool:
     return owner.isdigit() and tag_names(tag, int(owner), _start_time(int(owner)))
 
 
+def set_parent_death_signal(sig: int, parent_pid: int) -> None:
+    """Have the kernel send `sig` to this process when its parent dies; exit at once if
+    `parent_pid` (the parent when this was decided) is already gone. Safe in a preexec_fn."""
+    _LIBC.prctl(_PR_SET_PDEATHSIG, int(sig), 0, 0, 0)
+    if os.getppid() != parent_pid:  # the parent died before prctl took effect
+        os._exit(1)
+
+
 def _die_with_parent(parent_pid: int) -> Callable[[], None]:
     def preexec() -> None:
-        _LIBC.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-        if os.getppid() != parent_pid:  # the parent died before prctl took effect
-            os._exit(1)
+        set_parent_death_signal(signal.SIGKILL, parent_pid)
 
     return preexec
 

@@ -8,15 +8,11 @@ from typing import Any
 
 from .plan import HubPlan
 from .singleuser import DEFAULT_URL
+from .tied import tied_command
 
 __all__ = ["configure"]
 
 LEARNER_PATH = "/usr/local/bin:/usr/bin:/bin"
-
-
-def _tied(*argv: str) -> list[str]:
-    """Return a command line that runs `argv` so that it dies with the hub."""
-    return [sys.executable, "-m", "course_lib.hub.tied", *argv]
 
 
 def _progress(plan: HubPlan) -> tuple[list[dict[str, Any]], list[dict[str, Any]], dict[str, str]]:
@@ -24,7 +20,7 @@ def _progress(plan: HubPlan) -> tuple[list[dict[str, Any]], list[dict[str, Any]]
     from .progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
 
     spec = service_spec(sys.executable, Path(plan.state) / "progress.sqlite", plan.progress_port)
-    spec["command"] = _tied(*spec["command"])
+    spec["command"] = tied_command(*spec["command"])
     url = f"http://127.0.0.1:{plan.progress_port}/services/{SERVICE_NAME}/"
     return [spec], roles(), {PROGRESS_URL_ENV: url}
 
@@ -34,7 +30,7 @@ def _idle_culler(plan: HubPlan) -> tuple[list[dict[str, Any]], list[dict[str, An
         return [], []
     service = {
         "name": "idle-culler",
-        "command": _tied(sys.executable, "-m", "jupyterhub_idle_culler",
+        "command": tied_command(sys.executable, "-m", "jupyterhub_idle_culler",
                          f"--timeout={plan.idle_minutes * 60}"),
     }  # fmt: skip
     role = {
@@ -56,7 +52,7 @@ def configure(c: Any, plan: HubPlan) -> None:
     c.JupyterHub.cookie_secret_file = str(state / "jupyterhub_cookie_secret")
     c.JupyterHub.cleanup_servers = True  # the hub stopping stops every learner's server
     c.ConfigurableHTTPProxy.api_url = f"http://127.0.0.1:{plan.proxy_api_port}"
-    c.ConfigurableHTTPProxy.command = _tied(plan.proxy_command)
+    c.ConfigurableHTTPProxy.command = tied_command(plan.proxy_command)
     c.ConfigurableHTTPProxy.pid_file = str(state / "proxy.pid")
 
     c.JupyterHub.authenticator_class = plan.authenticator

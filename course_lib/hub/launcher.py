@@ -5,7 +5,6 @@ from __future__ import annotations
 import contextlib
 import os
 import secrets
-import shutil
 import signal
 import socket
 import subprocess
@@ -22,7 +21,7 @@ from ..signalling import send
 from .accounts import ensure_accounts, refuse_system_accounts
 from .environment import build_environment, check_world_executable
 from .plan import PLAN_ENV, HubPlan, write_plan
-from .proxy import install_proxy
+from .proxy import install_proxy, missing_npm, proxy_command
 from .settings import HUB_YAML, HubSettings, load_hub_settings
 from .tied import tie_to_parent
 
@@ -72,12 +71,9 @@ def _check_before_start(settings: HubSettings, source: Path) -> None:
         )
     refuse_system_accounts(settings, source)
     _check_port(settings, source)
-    proxy = Path(settings.environment) / "proxy" / "node_modules" / ".bin"
-    if shutil.which("npm") is None and not (proxy / "configurable-http-proxy").exists():
-        raise CourseError(
-            "npm is missing: the hub's proxy (configurable-http-proxy) is installed with npm.",
-            hint="install Node.js and npm (`apt-get install nodejs npm`), then `make hub` again.",
-        )
+    problem = missing_npm()
+    if problem is not None and not proxy_command(Path(settings.environment)).exists():
+        raise problem
     check_world_executable(Path(settings.python))
 
 

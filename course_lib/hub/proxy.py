@@ -8,10 +8,22 @@ from pathlib import Path
 
 from ..errors import CourseError
 
-__all__ = ["PINS_DIR", "install_proxy"]
+__all__ = ["PINS_DIR", "install_proxy", "missing_npm", "proxy_command"]
 
 PINS_DIR = Path(__file__).resolve().parent / "proxy"  # package.json and its lock file
 _PINNED = ("package.json", "package-lock.json")
+
+
+def proxy_command(environment: Path) -> Path:
+    """Return where the proxy's command is once installed under `environment`."""
+    return environment / "proxy" / "node_modules" / ".bin" / "configurable-http-proxy"
+
+
+def missing_npm() -> CourseError | None:
+    """Return the error to raise when npm is needed and missing, else None."""
+    if shutil.which("npm") is not None and shutil.which("node") is not None:
+        return None
+    return _missing_npm()
 
 
 def _missing_npm() -> CourseError:
@@ -25,16 +37,17 @@ def install_proxy(environment: Path) -> Path:
     """Install the pinned proxy under `environment/proxy` (again only when the pins changed);
     return the path of its command."""
     folder = environment / "proxy"
-    command = folder / "node_modules" / ".bin" / "configurable-http-proxy"
+    command = proxy_command(environment)
     same = all(
         (folder / name).exists() and (folder / name).read_bytes() == (PINS_DIR / name).read_bytes()
         for name in _PINNED
     )
     if same and command.exists():
         return command
-    npm = shutil.which("npm")
-    if npm is None or shutil.which("node") is None:
-        raise _missing_npm()
+    problem = missing_npm()
+    if problem is not None:
+        raise problem
+    npm = str(shutil.which("npm"))
     folder.mkdir(parents=True, exist_ok=True)
     for name in _PINNED:
         shutil.copyfile(PINS_DIR / name, folder / name)

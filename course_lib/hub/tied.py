@@ -6,24 +6,23 @@ live on without it. Started through this module they get SIGTERM the moment thei
 
 from __future__ import annotations
 
-import ctypes
 import os
 import signal
 import sys
 
-__all__ = ["tie_to_parent"]
+from ..processes import set_parent_death_signal
 
-_PR_SET_PDEATHSIG = 1
+__all__ = ["tie_to_parent", "tied_command"]
 
 
 def tie_to_parent(sig: int = signal.SIGTERM) -> None:
-    """Ask the kernel to send `sig` to this process when its parent dies (exit if it already
-    has)."""
-    parent = os.getppid()
-    libc = ctypes.CDLL(None, use_errno=True)
-    libc.prctl(_PR_SET_PDEATHSIG, int(sig), 0, 0, 0)
-    if os.getppid() != parent or parent == 1:
-        os._exit(1)
+    """Ask the kernel to send `sig` to this process when its parent dies."""
+    set_parent_death_signal(sig, os.getppid())
+
+
+def tied_command(*argv: str) -> list[str]:
+    """Return the command line that runs `argv` tied to its parent (see this module)."""
+    return [sys.executable, "-m", "course_lib.hub.tied", *argv]
 
 
 def main(argv: list[str]) -> int:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import ctypes
 import os
 import pty
 import signal
@@ -12,12 +11,12 @@ import time
 import traceback
 from typing import Any
 
+from ..processes import set_parent_death_signal
 from .events import ProcessExited, ProcessStarted, ProcessStderr, ProcessStdout, SignalProcess
 from .process import ProcessSpec
 
 __all__ = ["RunningProcess", "output_destinations"]
 
-_PR_SET_PDEATHSIG = 1
 # A SIGINT right behind the terminal's one lands while the node prints its KeyboardInterrupt
 # traceback and garbles it; real launch's event queue is slow enough for that not to happen.
 _SIGINT_DELAY_S = 0.05
@@ -25,7 +24,7 @@ _SIGINT_DELAY_S = 0.05
 
 def _die_with_launch() -> None:
     """Run in the child before exec: die when the launch process dies."""
-    ctypes.CDLL(None).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    set_parent_death_signal(signal.SIGKILL, os.getppid())
 
 
 def output_destinations(config: str | dict) -> dict[str, set[str]]:

@@ -16,6 +16,7 @@ import socket
 import subprocess
 import tempfile
 import time
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -49,20 +50,22 @@ def uid_of(name: str) -> int | None:
         return None
 
 
+def _processes_of(name: str) -> Iterator[Path]:
+    """Yield the /proc folder of every process running as Unix user `name`."""
+    uid = uid_of(name)
+    for entry in Path("/proc").iterdir():
+        with contextlib.suppress(OSError):
+            if entry.name.isdigit() and entry.stat().st_uid == uid:
+                yield entry
+
+
 def processes_of(name: str) -> list[str]:
     """Return `pid command` of every process running as Unix user `name`."""
-    uid = uid_of(name)
     found = []
-    for entry in Path("/proc").iterdir():
-        if not entry.name.isdigit():
-            continue
-        try:
-            if entry.stat().st_uid != uid:
-                continue
+    for entry in _processes_of(name):
+        with contextlib.suppress(OSError):
             command = (entry / "cmdline").read_bytes().replace(b"\0", b" ").decode()[:160]
-        except OSError:
-            continue
-        found.append(f"{entry.name} {command}")
+            found.append(f"{entry.name} {command}")
     return found
 
 
@@ -169,17 +172,9 @@ def wait_until(test: Any, timeout: float, step: float = 0.5) -> bool:
 
 def server_token(name: str) -> str:
     """Return the hub API token that `name`'s server and kernels hold (root reads it)."""
-    uid = uid_of(name)
-    for entry in Path("/proc").iterdir():
-        if not entry.name.isdigit():
-            continue
-        try:
-            if entry.stat().st_uid != uid:
-                continue
-            environ = (entry / "environ").read_bytes().split(b"\0")
-        except OSError:
-            continue
-        for item in environ:
-            if item.startswith(b"JUPYTERHUB_API_TOKEN="):
-                return item.split(b"=", 1)[1].decode()
+    for entry in _processes_of(name):
+        with contextlib.suppress(OSError):
+            for item in (entry / "environ").read_bytes().split(b"\0"):
+                if item.startswith(b"JUPYTERHUB_API_TOKEN="):
+                    return item.split(b"=", 1)[1].decode()
     raise AssertionError(f"no process of {name} holds a hub token")

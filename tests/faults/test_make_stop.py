@@ -8,7 +8,6 @@ cannot reach the other processes of this machine.
 from __future__ import annotations
 
 import json
-import os
 import shutil
 import subprocess
 import sys
@@ -16,6 +15,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
+from pid_namespace import namespace_prefix
 
 from course_lib.testing import independent_env
 
@@ -24,23 +24,9 @@ pytestmark = [pytest.mark.ros, pytest.mark.slow]
 SCENARIO = Path(__file__).with_name("stop_scenario.py")
 
 
-def _namespace_prefix() -> list[str]:
-    """Return the command prefix that runs a process in a new PID namespace, or skip."""
-    unshare = shutil.which("unshare")
-    if unshare is None:
-        pytest.skip("`unshare` (util-linux) is missing: it isolates `make stop` from this host")
-    prefix = [unshare, "--pid", "--fork", "--mount-proc", "--kill-child"]
-    if os.geteuid() != 0:
-        prefix[1:1] = ["--user", "--map-root-user"]
-    probe = subprocess.run([*prefix, "true"], capture_output=True, check=False)
-    if probe.returncode != 0:
-        pytest.skip(f"no PID namespace here ({probe.stderr.decode().strip()}): run as root, as CI")
-    return prefix
-
-
 @pytest.fixture(scope="module")
 def facts() -> dict:
-    prefix = _namespace_prefix()
+    prefix = namespace_prefix("isolates `make stop` from this host")
     tmp = tempfile.mkdtemp(prefix="ms")
     try:
         done = subprocess.run(

@@ -8,9 +8,9 @@ npm, the shared-password authenticator, and a stand-in single-user server
 from __future__ import annotations
 
 import contextlib
-import ctypes
 import fcntl
 import json
+import os
 import re
 import secrets
 import signal
@@ -25,13 +25,14 @@ import requests
 
 from course_lib.hub.progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
 from course_lib.hub.proxy import install_proxy
+from course_lib.hub.tied import tied_command
+from course_lib.processes import set_parent_death_signal
 
 LEARNERS = ("alice", "bob", "carol")
 ADMIN = "teacher"
 PASSWORD = "learners-share-this"  # shared-password: at least 8 characters
 ADMIN_PASSWORD = "the-admin-password-is-32-characters-or-more"
 HERE = Path(__file__).resolve().parent
-_PR_SET_PDEATHSIG = 1
 
 
 def proxy_command(cache: Path) -> str:
@@ -51,7 +52,7 @@ def free_port() -> int:
 
 
 def _die_with_parent() -> None:
-    ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+    set_parent_death_signal(signal.SIGTERM, os.getppid())
 
 
 class ClassHub:
@@ -81,6 +82,7 @@ class ClassHub:
 
     def _config(self) -> str:
         spec = service_spec(sys.executable, self.db, self.service_port)
+        spec["command"] = tied_command(*spec["command"])  # as the class hub: dies with it
         tests = {"name": "course-tests", "api_token": self.token}
         tests_role = {
             "name": "course-tests",
@@ -98,7 +100,7 @@ class ClassHub:
             "JupyterHub.services": [spec, tests],
             "JupyterHub.load_roles": [*roles(), tests_role],
             "ConfigurableHTTPProxy.api_url": f"http://127.0.0.1:{self.proxy_api_port}",
-            "ConfigurableHTTPProxy.command": [self.proxy],
+            "ConfigurableHTTPProxy.command": tied_command(self.proxy),
             "ConfigurableHTTPProxy.pid_file": str(self.root / "state" / "proxy.pid"),
             "JupyterHub.authenticator_class": "shared-password",
             "SharedPasswordAuthenticator.user_password": PASSWORD,

@@ -11,12 +11,10 @@ old pid and leads its own group, as another session's process would.
 from __future__ import annotations
 
 import json
-import os
-import shutil
 import subprocess
 import sys
 
-import pytest
+from pid_namespace import namespace_prefix
 
 from course_lib.testing import independent_env
 
@@ -67,23 +65,9 @@ print(json.dumps(facts))
 """
 
 
-def _namespace_prefix() -> list[str]:
-    """Return the prefix that runs a command in a new PID namespace, or skip."""
-    unshare = shutil.which("unshare")
-    if unshare is None:
-        pytest.skip("`unshare` (util-linux) is missing: it gives the scenario its own pids")
-    prefix = [unshare, "--pid", "--fork", "--mount-proc", "--kill-child"]
-    if os.geteuid() != 0:
-        prefix[1:1] = ["--user", "--map-root-user"]
-    probe = subprocess.run([*prefix, "true"], capture_output=True, check=False)
-    if probe.returncode != 0:
-        pytest.skip(f"no PID namespace here ({probe.stderr.decode().strip()}): run as root, as CI")
-    return prefix
-
-
 def test_stopping_a_gone_child_never_kills_the_process_that_got_its_pid() -> None:
     done = subprocess.run(
-        [*_namespace_prefix(), sys.executable, "-c", SCENARIO],
+        [*namespace_prefix("gives the scenario its own pids"), sys.executable, "-c", SCENARIO],
         env=independent_env(),
         capture_output=True,
         text=True,
