@@ -29,28 +29,41 @@ __all__ = [
 FIRST_LESSON = "notebooks/01_setup_check.ipynb"
 
 
+LAB_SETTINGS_DIR = Path(__file__).parent / "lab_settings"
+LAB_EXTENSIONS_DIR = Path(__file__).parent / "lab_extensions"
+
+
 def course_server_options() -> list[str]:
     """Return the Jupyter server options every lab of the course runs with (local or hub)."""
     return [
         # A login shell would re-read /etc/profile and drop .venv/bin (and `ros2`) from PATH.
         f"--ServerApp.terminado_settings={_terminal_settings()}",
+        # A notebook whose kernel was shut down starts its own (Python 3) when a cell runs,
+        # without asking (the course's defaults, overrides.json), and Run All then runs every
+        # cell: the course's plugin makes the start single-flight (lab_extensions/: why).
+        f"--LabApp.app_settings_dir={LAB_SETTINGS_DIR}",
+        f"--LabApp.extra_labextensions_path={LAB_EXTENSIONS_DIR}",
         # a saved notebook keeps no live 3D view or widget (they would show errors reopened)
         "--ContentsManager.pre_save_hook=course_lib.live_outputs.scrub_on_save",
     ]
 
 
 def lab_argv(extra: Sequence[str] = ()) -> list[str]:
-    """Return the JupyterLab command line: loopback only, the first lesson open."""
-    first = FIRST_LESSON if (REPO_ROOT / FIRST_LESSON).exists() else str(NOTEBOOKS_DIR)
+    """Return the JupyterLab command line: loopback only, the first lesson open.
+
+    Lesson 1 is the server's default URL, so the address it prints (`--no-browser`, for a
+    learner on a remote machine to paste) and the one the browser opens are lesson 1's.
+    """
+    first = FIRST_LESSON if (REPO_ROOT / FIRST_LESSON).exists() else NOTEBOOKS_DIR.name
     return [
         str(venv_bin_dir() / "jupyter"),
         "lab",
         "--ServerApp.ip=127.0.0.1",
         f"--ServerApp.root_dir={REPO_ROOT}",
+        f"--LabApp.default_url=/lab/tree/{first}",
         *(["--allow-root"] if os.geteuid() == 0 else []),  # containers and CI run as root
         *course_server_options(),
         *extra,
-        first,
     ]
 
 

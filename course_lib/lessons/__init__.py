@@ -53,7 +53,6 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
         previous.stop_nodes()
         lesson._world = previous._world
         if lesson._world is not None and lesson._world.alive:
-            lesson._world.drive(0.0, 0.0)
             lesson._world.reset()
     _lessons[number] = lesson
     print(f"Lesson {number} · {lesson.title}")

@@ -14,6 +14,7 @@ __all__ = ["installed_checks", "run_checks"]
 
 # Lesson 8's dump: the learner's own file (the package's params file is never rewritten).
 DUMP_NAME = "dump/param_vel_node.yaml"
+NODE_11 = "descriptor_vel_node"
 
 
 def _nodes() -> list[str]:
@@ -156,6 +157,33 @@ def _lesson_6(lesson: Any) -> list[Check]:
     ]
 
 
+def other_drivers(lesson: Any, executable: str) -> list[str]:
+    """Return who else publishes on /cmd_vel than this lesson's `executable` (names, pids)."""
+    from ..machine.drivers import describe
+    from ..machine.drivers import other_drivers as others_of
+    from ..ros2.api import client
+
+    own = _own_node(lesson, executable)
+    return [describe(p) for p in others_of(client(), own.pid if own and own.alive else None)]
+
+
+def only_driver(lesson: Any, executable: str, node: str, others: list[str]) -> Check:
+    """Check that this lesson's `executable` runs and nothing else publishes on /cmd_vel."""
+    if others:
+        verb = "publish" if len(others) > 1 else "publishes"
+        hint = (
+            f"{', '.join(others)} also {verb} on /cmd_vel: stop it (Ctrl-C in its terminal), "
+            "then run this cell again."
+        )
+    else:
+        hint = f"start {node} with its `%ros2 run` cell."
+    return check(
+        f"only your {node} drives the robot (no other publisher on /cmd_vel)",
+        _own_node_running(lesson, executable) and not others,
+        hint,
+    )
+
+
 def _standing_still(lesson: Any) -> bool:
     """Return True if this lesson's robot stands still now (measured on /odom)."""
     world = lesson._world
@@ -163,9 +191,14 @@ def _standing_still(lesson: Any) -> bool:
 
 
 def _lesson_7(lesson: Any) -> list[Check]:
+    others = other_drivers(lesson, "param_vel")
+    alone = only_driver(lesson, "param_vel", "param_vel_node", others)
+    if others:  # the robot's motion is not only the learner's doing: judge nothing of it
+        return [alone]
     target = lesson.velocity
     top = lesson.state.get("top_speed", 0.0)  # measured by this lesson's drive_for()
     return [
+        alone,
         check(
             f"the robot drove at {target:g} m/s (measured on /odom)",
             abs(top - target) < 0.02,
@@ -271,6 +304,7 @@ def _lesson_11(lesson: Any) -> list[Check]:
     running = "run the `%ros2 run parameter_descriptors descriptor_vel` cell."
     saved = lesson.state.get("saved_params")
     return [
+        only_driver(lesson, "descriptor_vel", NODE_11, other_drivers(lesson, "descriptor_vel")),
         check(
             "the range refuses velocity 0.3 (max 0.26)",
             rejected is not None and not rejected.successful,

@@ -7,6 +7,7 @@ import math
 from typing import Any
 
 from ..errors import CourseError
+from .checks import only_driver, other_drivers
 from .files import Text
 from .judging import TravelAttempt, Verdict, judge_travel
 
@@ -74,6 +75,13 @@ class TravelExercise:
         if self._start is None:
             raise CourseError("The exercise is not armed.", hint="run `travel.arm()` first.")
         attempt = self._measure()
+        others = other_drivers(self.lesson, "descriptor_vel")
+        if others:  # not only the learner's answer moved the robot: no verdict on it
+            self.arm()
+            hint = only_driver(self.lesson, "descriptor_vel", NODE.lstrip("/"), others).hint
+            return Verdict(
+                False, f"Not judged (attempt {len(self.attempts) + 1} is still yours): {hint}"
+            )
         verdict = judge_travel(
             attempt,
             target_m=self.settings.target_m,

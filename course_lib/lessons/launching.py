@@ -39,7 +39,7 @@ def _executables(package: str, file: str, *args: str) -> list[str]:
 def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 4) -> LaunchRun:
     """Start `ros2 launch package file args`; wait for the node's first log line."""
     from ..launch import launch
-    from ..machine.takeover import remember, take_over
+    from ..machine.takeover import keep_one_driver, remember, take_over
     from ..ros2 import api
 
     executables = _executables(package, file, *args)
@@ -57,6 +57,10 @@ def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 
         )
     for executable in executables:
         remember(handle.child, executable)  # stopping the launch stops its node
+    api.client().wait_all_seen(timeout=3.0)
+    driver = keep_one_driver(handle.child)
+    if driver:
+        print(driver)
     lesson.state.setdefault("launches", []).append(handle)
     value = api.param_get("/param_vel_node", "velocity").value
     lesson.state.setdefault("launch_velocities", []).append(value)

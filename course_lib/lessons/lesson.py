@@ -80,10 +80,9 @@ class Lesson:
 
         path = str(REPO_ROOT / "config" / config) if config else None
         world = start_world(self.session, show=show, config=path)  # shows the 3D view
-        world.drive(0.0, 0.0)
-        world.reset()
+        world.reset()  # at rest too: the reset zeroes the wheels' command
         self._world = world
-        whose = "your lab's robot, the one every notebook shows" if world.shared else "the robot"
+        whose = "your lab's robot, the one every notebook shows," if world.shared else "the robot"
         print(f"Put {whose} back at its start pose, standing still.")
         return world
 
@@ -123,7 +122,8 @@ class Lesson:
 
     def run(self, package: str, executable: str, *args: str, timeout: float = 10.0) -> LogLines:
         """Start a node like `ros2 run`; show its first log line, or how it failed."""
-        from ..machine.takeover import remember, take_over
+        from ..machine.takeover import keep_one_driver, remember, take_over
+        from ..ros2.api import client
 
         command = " ".join(shlex.quote(a) for a in ("ros2", "run", package, executable, *args))
         taken = take_over(executable)
@@ -134,6 +134,10 @@ class Lesson:
         first = child.wait_for_line(lambda line: line.text.startswith("["), timeout)
         if first is not None and child.alive:
             remember(child, executable)
+            client().wait_all_seen(timeout=3.0)
+            driver = keep_one_driver(child)
+            if driver:
+                print(driver)
             return LogLines([f"$ {command}", first.text])
         code = child.wait(timeout)
         last = [ln.text for ln in child.lines if ln.text.strip()][-1:]

@@ -84,6 +84,15 @@ class NodeRegister:
         stop_tagged(record.tag)
         return record
 
+    def stop(self, tag: str) -> NodeRecord | None:
+        """Stop the lessons' node whose process `tag` names, if registered; return its record."""
+        with self._lock:
+            found = [key for key, record in self._records.items() if record.tag == tag]
+            record = self._records.pop(found[0]) if found else None
+        if record is not None and record.alive:
+            stop_tagged(record.tag)
+        return record
+
     def register(self, record: NodeRecord) -> None:
         """Remember that `record`'s process runs `record.executable` now."""
         with self._lock:

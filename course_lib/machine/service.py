@@ -62,6 +62,7 @@ class MachineService:
             "world.status": lambda _r: self.world.status(),
             "world.stop": lambda _r: self.world.stop() or {},
             "node.take": self._take,
+            "node.stop": lambda r: {"stopped": bool(self.nodes.stop(str(r["tag"])))},
             "node.register": self._register,
             "node.list": lambda _r: {"nodes": [rec.as_dict() for rec in self.nodes.records()]},
         }

@@ -14,7 +14,7 @@ from ..processes import ChildProcess, OutputLine, owner_tag
 from .client import machine_client
 from .register import NodeRecord, NodeRegister, node_name_from_log
 
-__all__ = ["remember", "set_label", "take_over"]
+__all__ = ["keep_one_driver", "lessons_nodes", "remember", "set_label", "take_over"]
 
 _local = NodeRegister()
 _state = {"label": "this notebook"}
@@ -75,3 +75,29 @@ def _register(child: ChildProcess, executable: str, node: str, label: str) -> No
         client.request("node.register", **record.as_dict())
     else:
         _local.register(record)
+
+
+def lessons_nodes() -> list[NodeRecord]:
+    """Return the nodes lessons started that still run (the lab's, or this kernel's)."""
+    client = machine_client()
+    if client is None:
+        return _local.records()
+    return [NodeRecord(**found) for found in client.request("node.list").get("nodes", [])]
+
+
+def _stop(record: NodeRecord) -> None:
+    client = machine_client()
+    if client is not None:
+        client.request("node.stop", tag=record.tag)
+    else:
+        _local.stop(record.tag)
+
+
+def keep_one_driver(child: ChildProcess) -> str:
+    """If `child` drives the robot, stop the lessons' other drivers; return what to say."""
+    from ..ros2.api import client
+    from .drivers import one_driver
+
+    if not child.alive:
+        return ""
+    return "\n".join(one_driver(client(), child.pid, lessons_nodes(), _stop))

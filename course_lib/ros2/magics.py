@@ -49,10 +49,11 @@ RUN_SEEN_WAIT_S = 3.0  # at most, after the node's first line, until this kernel
 def _background_run(cmd: list[str], name: str, ctx: Any) -> int:
     """Start `ros2 run`'s executable as a session child and show its first lines.
 
-    A node of the same executable that a lesson left running is stopped first (one line
-    says so, printed apart from the command's own output).
+    A node of the same executable that a lesson left running is stopped first, and so is any
+    other lessons' node that drives the robot when this one does (a line says so, printed
+    apart from the command's own output).
     """
-    from ..machine.takeover import remember, take_over
+    from ..machine.takeover import keep_one_driver, remember, take_over
     from ..session import get_session
 
     taken = take_over(name)
@@ -65,6 +66,9 @@ def _background_run(cmd: list[str], name: str, ctx: Any) -> int:
         from .api import client
 
         client().wait_all_seen(timeout=RUN_SEEN_WAIT_S)
+        driver = keep_one_driver(child)
+        if driver:
+            print(driver)
     for line in child.lines[:5]:
         (ctx.console.err if line.stream == "stderr" else ctx.console.out)(line.text + "\n")
     return 0 if child.alive else int(child.returncode or 0)

@@ -1,8 +1,10 @@
 """Start the simulated world from a notebook, once per session: `start_world()`.
 
-Lesson 3 calls it. Inside a lab (`make lab`) the world belongs to the lab, so every notebook
-of the lab shows and drives the same robot; elsewhere the simulation and its meshcat server
-are children of the course session and end with it (or with the kernel, however it dies).
+Lesson 3 calls it. Inside a lab (`make lab`) the world belongs to the lab: every call, shown
+or not, whatever real-time factor it asks for, attaches to the lab's one world (changing its
+real-time factor in place, in one printed line), so every notebook of the lab shows and drives
+the same robot on one clock. Elsewhere the simulation and its meshcat server are children of
+the course session and end with it (or with the kernel, however it dies).
 """
 
 from __future__ import annotations
@@ -62,6 +64,20 @@ def _lab_world(
     return world
 
 
+def _set_lab_real_time_factor(world: World, factor: float) -> None:
+    """Change the lab's world to `factor` in place (never a second world); say so if it did."""
+    from ..ros2 import api
+
+    before = api.param_get("/mujoco", "real_time_factor").value
+    if before == factor:
+        return
+    world.set_parameter("real_time_factor", float(factor))
+    print(
+        f"Set the lab's simulation to real_time_factor {factor:g} (it was {before:g}): "
+        "every notebook of this lab shares that world."
+    )
+
+
 def _attached(session: Any) -> World | None:
     """Return this session's world if it still runs (a lab's: and is still the lab's one)."""
     world = _worlds.get(id(session))
@@ -88,8 +104,8 @@ def start_world(
         session: the course session; the process's own one if None.
         show: start the meshcat view and display it in the current cell.
         config: simulation YAML; config/simulation.yaml if None.
-        real_time_factor: override the config's (0 = as fast as possible, for tests); a
-            world of its own is started then, even inside a lab.
+        real_time_factor: override the config's (0 = as fast as possible, for tests);
+            inside a lab the lab's world is set to it in place.
         timeout: seconds to wait for the world's first /odom.
     """
     from ..machine import machine_client
@@ -104,7 +120,7 @@ def start_world(
             f"real_time_factor must be 0 or more, got {real_time_factor}",
             hint="use 1.0 for real time, 0 for as fast as possible.",
         )
-    client = machine_client() if rtf is None and show else None
+    client = machine_client()
     with _worlds_lock:
         world = _attached(session)
         if world is not None and client is not None:
@@ -117,6 +133,8 @@ def start_world(
             else:
                 world = _own_world(session, settings, path, show, real_time_factor, timeout)
             _worlds[id(session)] = world
+    if client is not None and rtf is not None:
+        _set_lab_real_time_factor(world, rtf)
     if show and world.viewer is not None:
         world.show()
     return world

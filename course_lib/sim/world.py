@@ -71,7 +71,8 @@ class World:
         self._listeners: list[Any] = []
         node = session.node
         self._sub = node.create_subscription(Odometry, "/odom", self._on_odom, 10)
-        self._cmd = node.create_publisher(Twist, "/cmd_vel", 10)
+        # made on the first drive(): a kernel that only watches never counts as a driver
+        self._cmd: Any = None
         self._reset = node.create_publisher(UInt32, RESET_TOPIC, 10)
         self._reset_sub = node.create_subscription(
             UInt32, RESET_DONE_TOPIC, self._on_reset_done, 10
@@ -165,6 +166,8 @@ class World:
         self._check_alive()
         msg = self._twist_type()
         msg.linear.x, msg.angular.z = float(linear_mps), float(angular_radps)
+        if self._cmd is None:
+            self._cmd = self.session.node.create_publisher(self._twist_type, "/cmd_vel", 10)
         self._matched(self._cmd)
         self._cmd.publish(msg)
 
@@ -248,12 +251,13 @@ class World:
                 del _worlds[id(self.session)]
         if not self.session.closed:
             node = self.session.node
-            steps = (
+            steps: list[tuple[Any, Any]] = [
                 (node.destroy_subscription, self._sub),
-                (node.destroy_publisher, self._cmd),
                 (node.destroy_publisher, self._reset),
                 (node.destroy_subscription, self._reset_sub),
-            )
+            ]
+            if self._cmd is not None:
+                steps.append((node.destroy_publisher, self._cmd))
             for destroy, entity in steps:  # each step on its own: one failure skips no other
                 with contextlib.suppress(Exception):  # the session may be closing concurrently
                     destroy(entity)

@@ -1,4 +1,5 @@
-"""Lesson 7's plot: the robot's /odom speed over simulated time, each parameter change marked."""
+"""Lesson 7's plot: the robot's /odom speed over simulated time, each `velocity` change of the
+lesson's node marked (another node's changes are not this plot's story)."""
 
 from __future__ import annotations
 
@@ -15,10 +16,11 @@ __all__ = ["SpeedPlot"]
 class SpeedPlot:
     """Record /odom speed and /parameter_events; show them live or as a still picture."""
 
-    def __init__(self, session: Any, *, window: int = 3000) -> None:
+    def __init__(self, session: Any, *, node: str = "/param_vel_node", window: int = 3000) -> None:
         from nav_msgs.msg import Odometry
 
         self.session = session
+        self.node = node  # only this node's velocity changes are marked
         self.samples: deque[tuple[float, float]] = deque(maxlen=window)
         self.marks: list[tuple[float, str]] = []
         self.time_jumps = 0  # simulated time going back: the world restarted, or two worlds
@@ -41,7 +43,11 @@ class SpeedPlot:
             self.samples.append((stamp, msg.twist.twist.linear.x))
 
     def _on_event(self, msg: Any) -> None:
-        changed = [c for c in changes_of(msg) if c.kind == "changed" and c.name == "velocity"]
+        changed = [
+            c
+            for c in changes_of(msg)
+            if c.kind == "changed" and c.name == "velocity" and c.node == self.node
+        ]
         with self._lock:
             now = self.samples[-1][0] if self.samples else 0.0
             self.marks += [(now, f"velocity := {c.value:g}") for c in changed]

@@ -81,6 +81,11 @@ class RestTerminal:
         if kind == "stdout":
             self.output += content[0]
 
+    def interrupt(self) -> None:
+        """Press Ctrl-C, then wait until the shell answers again."""
+        self._ws.write_message(json.dumps(["stdin", "\x03"]))
+        self.run("echo back-$((20 + 22))", r"back-42")
+
     def close(self) -> None:
         """Close the websocket (the shell keeps running until the server ends it)."""
         self._ws.close()

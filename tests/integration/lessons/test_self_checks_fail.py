@@ -20,6 +20,7 @@ from course_lib.ros2 import api
 from course_lib.session import Session, get_session
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
+TWIST = "geometry_msgs/msg/Twist"
 
 
 def _failed(lesson: Lesson) -> set[str]:
@@ -98,6 +99,38 @@ def test_lesson7_fails_when_the_robot_did_not_drive_or_still_drives(stop_nodes) 
     assert api.param_set("/param_vel_node", "velocity", 0.0).successful
     lesson.wait_until_stopped()
     assert not _failed(lesson)
+    lesson.current_world.stop()
+
+
+@pytest.mark.sim
+def test_lesson7_fails_for_another_publisher_on_cmd_vel_and_names_it(stop_nodes) -> None:
+    """A publisher no lesson started (a terminal's `ros2 topic pub`): the motion is not judged."""
+    from course_lib.paths import venv_bin_dir
+
+    lesson = start(7)
+    lesson.world(show=False)
+    lesson.run("parameter_tests", "param_vel")
+    twist = "{linear: {x: 0.0}}"
+    pub = subprocess.Popen(
+        [str(venv_bin_dir() / "ros2"), "topic", "pub", "/cmd_vel", TWIST, twist],
+        env=lesson.session.env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
+    )  # fmt: skip
+    try:
+        assert pub.stdout is not None
+        while not pub.stdout.readline().startswith("publishing #"):  # as the learner sees it
+            assert pub.poll() is None, "ros2 topic pub ended"
+        checks = lesson.self_check().checks
+        assert [c.what for c in checks] == [
+            "only your param_vel_node drives the robot (no other publisher on /cmd_vel)"
+        ]
+        assert not checks[0].passed
+        assert "also publishes on /cmd_vel: stop it" in checks[0].hint, checks[0].hint
+    finally:
+        pub.send_signal(2)
+        pub.communicate(timeout=10)
+    assert "only your param_vel_node drives the robot (no other publisher on /cmd_vel)" not in (
+        _failed(lesson)
+    )
     lesson.current_world.stop()
 
 

@@ -6,6 +6,7 @@ import json
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -19,7 +20,16 @@ def test_lab_listens_on_loopback_and_keeps_ros2_on_terminal_path() -> None:
     settings = next(a for a in argv if a.startswith("--ServerApp.terminado_settings="))
     shell_command = json.loads(settings.split("=", 1)[1])["shell_command"]
     assert "-l" not in shell_command and "--login" not in shell_command
-    assert argv[-2:] == ["--no-browser", lab.FIRST_LESSON]
+    assert argv[-1] == "--no-browser"
+    # the address printed (and opened) is lesson 1's, not the Launcher's
+    assert f"--LabApp.default_url=/lab/tree/{lab.FIRST_LESSON}" in argv
+
+
+def test_the_course_lab_settings_start_a_shut_down_notebooks_kernel_without_asking() -> None:
+    option = next(a for a in lab.course_server_options() if "app_settings_dir" in a)
+    folder = option.split("=", 1)[1]
+    overrides = json.loads((Path(folder) / "overrides.json").read_text())
+    assert overrides["@jupyterlab/notebook-extension:tracker"]["autoStartDefaultKernel"] is True
 
 
 @pytest.fixture
