@@ -128,8 +128,9 @@ def one_driver(
             stopped.append(record)
     lines = []
     if stopped:
-        names = ", ".join(
-            f"{r.node or r.executable} ({r.executable}, started by {r.label})" for r in stopped
+        names = "; ".join(
+            f"{r.node or r.executable} ({r.executable}) that {r.label} had started"
+            for r in stopped
         )
         lines.append(f"Stopped {names}: one node at a time drives your lab's robot.")
     stopped_pids = [int(r.tag.split(":")[0]) for r in stopped]

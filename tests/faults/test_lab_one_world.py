@@ -93,8 +93,8 @@ def test_a_lessons_driver_stops_the_other_lessons_drivers_and_names_the_learners
     ran = eleven.ok(f"%ros2 run {DESCRIPTOR_VEL} --ros-args -p use_sim_time:=true")
     stopped = [line for line in ran.text.splitlines() if line.startswith("Stopped ")]
     assert stopped == [
-        "Stopped /param_vel_node (param_vel, started by lesson 5): one node at a time drives "
-        "your lab's robot."
+        "Stopped /param_vel_node (param_vel) that lesson 5 had started: one node at a time "
+        "drives your lab's robot."
     ], ran.text
     assert wait_gone([param_vel], 10.0) == [], "lesson 5's param_vel_node still drives"
     assert eleven.ok("print(lesson.self_check().passed)").text  # runs; the exercise is not done
