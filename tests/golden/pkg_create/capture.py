@@ -70,9 +70,7 @@ CASES: dict[str, list[str]] = {
 
 def _files(root: Path) -> dict[str, str]:
     return {
-        str(p.relative_to(root)): p.read_text()
-        for p in sorted(root.rglob("*"))
-        if p.is_file()
+        str(p.relative_to(root)): p.read_text() for p in sorted(root.rglob("*")) if p.is_file()
     }
 
 
@@ -100,7 +98,9 @@ def capture(ros2: str) -> list[dict[str, object]]:
                     (cwd / "my_package").mkdir()
                 record = {"case": case, "args": args, **_run(ros2, args, cwd, env)}
                 record["files"] = _files(cwd)
-                record["dirs"] = sorted(str(p.relative_to(cwd)) for p in cwd.rglob("*") if p.is_dir())
+                record["dirs"] = sorted(
+                    str(p.relative_to(cwd)) for p in cwd.rglob("*") if p.is_dir()
+                )
                 records.append(record)
     return records
 

@@ -60,7 +60,7 @@ def test_absent_commands_say_what_to_use(argv: list[str]) -> None:
     )
 
 
-@pytest.mark.parametrize("argv", [["pkg", "create", "x"], ["topic", "delay", "/t"]])
+@pytest.mark.parametrize("argv", [["pkg", "list"], ["topic", "delay", "/t"]])
 def test_absent_verbs_say_what_to_use(argv: list[str]) -> None:
     out = run_collected(argv)
     assert out.exit_code == 1
