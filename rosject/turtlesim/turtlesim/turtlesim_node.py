@@ -7,6 +7,7 @@ turtlesim messages have no wheel.
 """
 
 import math
+import struct
 
 from geometry_msgs.msg import Twist
 from rcl_interfaces.msg import IntegerRange, ParameterDescriptor
@@ -18,8 +19,9 @@ from .rclcpp_like import declare_parameter_events_qos
 
 DEFAULT_BACKGROUND = {'background_r': 0x45, 'background_g': 0x56, 'background_b': 0xFF}
 CHANNELS = {'background_r': 'Red', 'background_g': 'Green', 'background_b': 'Blue'}
-# The real window is 500 pixels wide at 45.4545 pixels per meter; turtle1 starts in its middle.
-WORLD_SIZE = 499 / (500 / 11.0)
+# The real window is 500 pixels wide at 45 pixels (a turtle image) per meter; turtle1 starts in
+# its middle.
+WORLD_SIZE = struct.unpack('f', struct.pack('f', 499 / 45.0))[0]  # a C++ float
 UPDATE_PERIOD = 0.016  # seconds, as the real node's update timer
 COMMAND_TIMEOUT = 1.0  # seconds: a turtle stops when commands stop coming, as the real one
 
