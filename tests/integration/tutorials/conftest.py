@@ -10,18 +10,20 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "ros2"))
 
-from learner_shell import LearnerShell  # noqa: E402
-from ros2_golden import daemon, ros_session  # noqa: E402
+from learner_shell import LearnerShell
+from ros2_golden import daemon, ros_session
 
 __all__ = ["daemon", "ros_session"]
 
 
 @pytest.fixture
-def terminals(ros_session, daemon, tmp_path: Path) -> Iterator[Callable[[], LearnerShell]]:  # noqa: ANN001
+def terminals(ros_session, daemon, tmp_path: Path) -> Iterator[Callable[[], LearnerShell]]:
     """Open lab terminals in a fresh home (cwd = home); all are closed at the end."""
     home = tmp_path / "home"
     home.mkdir()
     env = {**ros_session.env, "HOME": str(home)}
+    # the test runner's own setting; with it, setuptools warns on stderr in every colcon build
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
     opened: list[LearnerShell] = []
 
     def open_terminal() -> LearnerShell:

@@ -65,7 +65,7 @@ READ_ONLY = [
 SPAWNED = r"\[turtlesim\]: Spawning turtle \[turtle1\] at x=\[5\.544445\], y=\[5\.544445\]"
 
 
-def test_understanding_parameters_runs_as_written(terminals) -> None:  # noqa: ANN001
+def test_understanding_parameters_runs_as_written(terminals) -> None:
     began = time.monotonic()
     sim, teleop, cli = terminals(), terminals(), terminals()
     assert cli.type("source /opt/ros/jazzy/setup.bash") == (
