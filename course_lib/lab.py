@@ -14,19 +14,22 @@ from .domain import lease_domain
 from .lab_leftovers import clean_up_killed_labs, workspaces_dir
 from .lab_markers import lab_marker
 from .machine.protocol import SOCKET_ENV
-from .paths import NOTEBOOKS_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
+from .paths import NOTEBOOKS_DIR, PACKAGE_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
 from .processes import ChildProcess, spawn
 from .ros2 import start_daemon
 from .session import session_env
 
 __all__ = [
     "FIRST_LESSON",
+    "LAB_BASHRC",
     "course_server_options",
     "lab_argv",
     "run_lab",
+    "terminal_shell_command",
 ]
 
 FIRST_LESSON = "notebooks/01_setup_check.ipynb"
+LAB_BASHRC = PACKAGE_DIR / "shell" / "lab_bashrc.bash"
 
 
 LAB_SETTINGS_DIR = Path(__file__).parent / "lab_settings"
@@ -67,10 +70,21 @@ def lab_argv(extra: Sequence[str] = ()) -> list[str]:
     ]
 
 
+def terminal_shell_command() -> list[str]:
+    """Return the lab terminal's shell: the user's, interactive; bash reads the course's rc.
+
+    The rc (course_lib/shell/lab_bashrc.bash) reads ~/.bashrc as bash would, and answers the
+    docs' `source /opt/ros/jazzy/setup.bash` in one line: the lab is already set up.
+    """
+    shell = os.environ.get("SHELL") or "/bin/bash"
+    if Path(shell).name == "bash":
+        return [shell, "--rcfile", str(LAB_BASHRC), "-i"]
+    return [shell, "-i"]
+
+
 def _terminal_settings() -> str:
     """Return terminado settings that start the user's shell as a plain interactive shell."""
-    shell = os.environ.get("SHELL") or "/bin/bash"
-    return json.dumps({"shell_command": [shell, "-i"]})
+    return json.dumps({"shell_command": terminal_shell_command()})
 
 
 def _start_machine(env: dict[str, str], cwd: Path) -> Any:

@@ -20,11 +20,20 @@ from .errors import SessionClosedError, SessionThreadError
 from .paths import PACKAGE_DIR
 from .processes import ChildProcess, reap_orphans, spawn
 
-__all__ = ["FASTDDS_PROFILE", "SESSION_DOMAIN_ENV", "Session", "get_session", "session_env"]
+__all__ = [
+    "FASTDDS_PROFILE",
+    "ROS_DISTRO_ENV",
+    "SESSION_DOMAIN_ENV",
+    "Session",
+    "get_session",
+    "session_env",
+]
 
 FASTDDS_PROFILE = PACKAGE_DIR / "dds" / "fastdds_profile.xml"
 _PROFILE_ENV = "FASTRTPS_DEFAULT_PROFILES_FILE"
 SESSION_DOMAIN_ENV = "COURSE_SESSION_DOMAIN"  # marks a ROS_DOMAIN_ID we set ourselves
+# What a real Jazzy's setup.bash exports: the docs' commands use $ROS_DISTRO.
+ROS_DISTRO_ENV = {"ROS_DISTRO": "jazzy", "ROS_VERSION": "2", "ROS_PYTHON_VERSION": "3"}
 _log = logging.getLogger(__name__)
 
 
@@ -43,6 +52,7 @@ def session_env(domain_id: int, base: Mapping[str, str] | None = None) -> dict[s
     env.update(isolation_env(domain_id))
     env.setdefault(_PROFILE_ENV, str(FASTDDS_PROFILE))
     env.setdefault("RCUTILS_LOGGING_BUFFERED_STREAM", "0")
+    env.update(ROS_DISTRO_ENV)
     return env
 
 
@@ -64,6 +74,7 @@ class Session:
         # This process's own participant reads discovery settings from os.environ, and its
         # shell commands (`!ros2 ...`) and launch files see the workspace as if sourced.
         overlay = (*isolation_env(0), _PROFILE_ENV, "AMENT_PREFIX_PATH", "COLCON_PREFIX_PATH")
+        overlay += tuple(ROS_DISTRO_ENV)
         os.environ.update({k: self.env[k] for k in overlay if k in self.env})
         os.environ[DOMAIN_ENV] = os.environ[SESSION_DOMAIN_ENV] = str(self.domain_id)
         os.environ.pop("ROS_LOCALHOST_ONLY", None)

@@ -11,6 +11,7 @@ from typing import Any
 
 from .. import ament
 from ..errors import PackageNotFoundError
+from .absent_programs import absent_program_hint
 from .context import Context
 
 __all__ = ["executable_paths", "pkg_executables", "pkg_prefix", "run"]
@@ -64,13 +65,14 @@ def pkg_prefix(args: argparse.Namespace, ctx: Context) -> Any:
 
 def _find(args: argparse.Namespace, env: dict[str, str]) -> Path | str:
     """Return the executable's path, or the message ros2run fails with."""
+    hint = absent_program_hint(args.package_name, args.executable_name)
     try:
         paths = executable_paths(args.package_name, env)
     except PackageNotFoundError:
-        return f"Package '{args.package_name}' not found"
+        return hint or f"Package '{args.package_name}' not found"
     matches = [p for p in paths if p.name == args.executable_name]
     if not matches:
-        return "No executable found"
+        return hint or "No executable found"
     if len(matches) > 1:
         return "Multiple executables found:" + "".join(f"\n- {p}" for p in matches)
     return matches[0]

@@ -129,6 +129,7 @@ COMMANDS: dict[str, Command] = {
     "pkg": Command(
         "Various package related sub-commands",
         {
+            "create": Verb("Create a new ROS 2 package", "pkg_create", graph=False),
             "executables": Verb(
                 "Output a list of package specific executables",
                 "pkg:pkg_executables",
@@ -211,7 +212,6 @@ ELSEWHERE: dict[str, str] = {
     "multicast": "The course runs on one machine with localhost discovery: nothing to test.",
     "security": "The course runs without SROS2 security.",
     "wtf": "Check the course's setup with `make doctor` (or `python -m course_lib doctor`).",
-    "pkg create": "The course's package is in rosject/: edit it there and rebuild with `make`.",
     "pkg list": "Try `ros2 pkg executables` to see the course's packages and programs.",
     "pkg xml": "Read the manifest directly: `cat $(ros2 pkg prefix --share <package>)"
     "/package.xml`.",

@@ -60,7 +60,7 @@ def test_absent_commands_say_what_to_use(argv: list[str]) -> None:
     )
 
 
-@pytest.mark.parametrize("argv", [["pkg", "create", "x"], ["topic", "delay", "/t"]])
+@pytest.mark.parametrize("argv", [["pkg", "list"], ["topic", "delay", "/t"]])
 def test_absent_verbs_say_what_to_use(argv: list[str]) -> None:
     out = run_collected(argv)
     assert out.exit_code == 1
@@ -86,8 +86,8 @@ def test_terminal_routing_follows_the_table() -> None:
 def test_verb_help_lists_only_the_course_verbs() -> None:
     out = run_collected(["pkg", "-h"])
     assert out.exit_code == 0
-    assert "executables" in out.stdout and "prefix" in out.stdout
-    assert "create" not in out.stdout and "xml" not in out.stdout
+    assert "executables" in out.stdout and "prefix" in out.stdout and "create" in out.stdout
+    assert "xml" not in out.stdout
     topic = run_collected(["topic", "--help"]).stdout
     for verb in ("bw", "echo", "find", "hz", "info", "list", "pub", "type"):
         assert f"\n    {verb} " in topic or f"\n  {verb} " in topic, verb

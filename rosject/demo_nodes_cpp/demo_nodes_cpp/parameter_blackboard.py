@@ -1,0 +1,45 @@
+"""demo_nodes_cpp's parameter_blackboard, in rclpy: a node that holds any parameter it is given.
+
+The real node (C++) is an rclcpp node with allow_undeclared_parameters and
+automatically_declare_parameters_from_overrides; so is this one, and it logs the same line.
+"""
+
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+
+from .rclcpp_like import declare_parameter_events_qos
+
+
+class ParameterBlackboard(Node):
+    """Accept every parameter set on it, declared or not."""
+
+    def __init__(self):
+        super().__init__(
+            'parameter_blackboard',
+            allow_undeclared_parameters=True,
+            automatically_declare_parameters_from_overrides=True,
+        )
+        declare_parameter_events_qos(self)
+        # rclcpp adds start_type_description_service after the constructor has logged
+        served = len(self._parameters) - 1
+        self.get_logger().info(
+            'Parameter blackboard node named \'%s\' ready, and serving \'%d\' parameters already!'
+            % (self.get_fully_qualified_name(), served)
+        )
+
+
+def main(args=None):
+    rclpy.init(args=args)
+    node = ParameterBlackboard()
+    try:
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+
+
+if __name__ == '__main__':
+    main()

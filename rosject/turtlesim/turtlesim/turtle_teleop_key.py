@@ -1,0 +1,87 @@
+"""turtle_teleop_key in rclpy: arrow keys in a terminal drive turtle1, as the real one does."""
+
+import os
+import select
+import sys
+import termios
+import tty
+
+from geometry_msgs.msg import Twist
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+
+from .rclcpp_like import declare_parameter_events_qos
+
+ARROWS = {'A': (1.0, 0.0), 'B': (-1.0, 0.0), 'C': (0.0, -1.0), 'D': (0.0, 1.0)}
+ROTATIONS = set('gbvcdertf')
+INSTRUCTIONS = (
+    'Reading from keyboard\n'
+    '---------------------------\n'
+    'Use arrow keys to move the turtle.\n'
+    "Use G|B|V|C|D|E|R|T keys to rotate to absolute orientations. 'F' to cancel a rotation.\n"
+    "'Q' to quit.\n"
+)
+
+
+class TeleopTurtle(Node):
+    """Publish a Twist on turtle1/cmd_vel for each arrow key."""
+
+    def __init__(self):
+        super().__init__('teleop_turtle')
+        self.declare_parameter('scale_angular', 2.0)
+        self.declare_parameter('scale_linear', 2.0)
+        declare_parameter_events_qos(self)
+        self.publisher = self.create_publisher(Twist, 'turtle1/cmd_vel', 1)
+        self.warned_rotation = False
+
+    def on_key(self, key):
+        """Act on one key (the last byte of an arrow's escape sequence); False to quit."""
+        if key in ('q', 'Q'):
+            return False
+        if key.lower() in ROTATIONS and not self.warned_rotation:
+            self.warned_rotation = True
+            self.get_logger().warn(
+                'Rotating to an absolute orientation needs turtlesim\'s rotate_absolute action, '
+                'which the course\'s turtlesim lacks: use the arrow keys.')
+        if key in ARROWS:
+            linear, angular = ARROWS[key]
+            msg = Twist()
+            msg.linear.x = self.get_parameter('scale_linear').value * linear
+            msg.angular.z = self.get_parameter('scale_angular').value * angular
+            self.publisher.publish(msg)
+        return True
+
+
+def _key_loop(node, fd):
+    while rclpy.ok():
+        ready, _, _ = select.select([fd], [], [], 0.1)
+        if ready:
+            data = os.read(fd, 1)
+            if not data or not node.on_key(data.decode(errors='replace')):
+                return
+        rclpy.spin_once(node, timeout_sec=0)
+
+
+def main(args=None):
+    rclpy.init(args=args)
+    node = TeleopTurtle()
+    fd = sys.stdin.fileno()
+    saved = termios.tcgetattr(fd) if os.isatty(fd) else None
+    sys.stdout.write(INSTRUCTIONS)
+    sys.stdout.flush()
+    try:
+        if saved is not None:
+            tty.setcbreak(fd)
+        _key_loop(node, fd)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        if saved is not None:
+            termios.tcsetattr(fd, termios.TCSADRAIN, saved)
+        node.destroy_node()
+        rclpy.try_shutdown()
+
+
+if __name__ == '__main__':
+    main()
