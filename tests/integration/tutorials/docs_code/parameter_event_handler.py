@@ -1,36 +1,32 @@
+"""Log each change of an_int_param (here) and of parameter_blackboard's a_double_param."""
 import rclpy
-import rclpy.node
-import rclpy.parameter
-
+from rclpy.node import Node
+from rclpy.parameter import parameter_value_to_python
 from rclpy.parameter_event_handler import ParameterEventHandler
 
 
-class SampleNodeWithParameters(rclpy.node.Node):
+class WatchingNode(Node):
+    """The tutorial's `node_with_parameters`."""
+
     def __init__(self):
         super().__init__('node_with_parameters')
-
         self.declare_parameter('an_int_param', 0)
+        self.events = ParameterEventHandler(self)
+        self.watches = [
+            self.events.add_parameter_callback(
+                parameter_name=parameter, node_name=node, callback=self.report
+            )
+            for parameter, node in (
+                ('an_int_param', 'node_with_parameters'),
+                ('a_double_param', 'parameter_blackboard'),
+            )
+        ]
 
-        self.handler = ParameterEventHandler(self)
-
-        self.callback_handle = self.handler.add_parameter_callback(
-            parameter_name="an_int_param",
-            node_name="node_with_parameters",
-            callback=self.callback,
-        )
-
-        self.callback_handle = self.handler.add_parameter_callback(
-            parameter_name="a_double_param",
-            node_name="parameter_blackboard",
-            callback=self.callback,
-        )
-
-    def callback(self, p: rclpy.parameter.Parameter) -> None:
-        self.get_logger().info(f"Received an update to parameter: {p.name}: {rclpy.parameter.parameter_value_to_python(p.value)}")
+    def report(self, parameter):
+        value = parameter_value_to_python(parameter.value)
+        self.get_logger().info(f'Received an update to parameter: {parameter.name}: {value}')
 
 
 def main():
     rclpy.init()
-    node = SampleNodeWithParameters()
-    rclpy.spin(node)
-    rclpy.shutdown()
+    rclpy.spin(WatchingNode())

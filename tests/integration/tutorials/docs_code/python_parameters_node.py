@@ -1,31 +1,27 @@
+"""Greet with `my_parameter` every second, then set it back to 'world'."""
 import rclpy
-import rclpy.node
+from rclpy.node import Node
+from rclpy.parameter import Parameter
 
-class MinimalParam(rclpy.node.Node):
+
+class GreetingNode(Node):
+    """The tutorial's `minimal_param_node`."""
+
     def __init__(self):
         super().__init__('minimal_param_node')
-
         self.declare_parameter('my_parameter', 'world')
+        self.greeting_timer = self.create_timer(1.0, self.greet)
 
-        self.timer = self.create_timer(1, self.timer_callback)
+    def greet(self):
+        name = self.get_parameter('my_parameter').value
+        self.get_logger().info(f'Hello {name}!')
+        self.set_parameters([Parameter('my_parameter', Parameter.Type.STRING, 'world')])
 
-    def timer_callback(self):
-        my_param = self.get_parameter('my_parameter').get_parameter_value().string_value
-
-        self.get_logger().info('Hello %s!' % my_param)
-
-        my_new_param = rclpy.parameter.Parameter(
-            'my_parameter',
-            rclpy.Parameter.Type.STRING,
-            'world'
-        )
-        all_new_parameters = [my_new_param]
-        self.set_parameters(all_new_parameters)
 
 def main():
     rclpy.init()
-    node = MinimalParam()
-    rclpy.spin(node)
+    rclpy.spin(GreetingNode())
+
 
 if __name__ == '__main__':
     main()
