@@ -12,6 +12,7 @@ from typing import Any
 
 import yaml
 
+from ..errors import CourseError
 from .actions import IncludeLaunchDescription
 from .context import LaunchContext
 from .declared import DeclaredParameter, declared_parameters
@@ -86,9 +87,22 @@ def _display_name(node: Node) -> str:
     return name if UNSPECIFIED_NAME not in name else f"{name} (name set in the node's code)"
 
 
+def _refuse_aliases(path: str, text: str) -> None:
+    """Say what rcl says of an alias in a `--params-file` (the node would not start)."""
+    for event in yaml.parse(text, Loader=yaml.SafeLoader):
+        if isinstance(event, yaml.AliasEvent):
+            line = event.start_mark.line + 1
+            raise CourseError(
+                f"{path}: Will not support aliasing at line {line}",
+                hint="ROS reads --params-file without YAML aliases (*name): write the values out.",
+            )
+
+
 def _file_entries(path: str, fqn: str, seen_keys: list[tuple[str, str]]) -> list[tuple]:
     with open(path) as handle:
-        data = yaml.safe_load(handle) or {}
+        text = handle.read()
+    _refuse_aliases(path, text)
+    data = yaml.safe_load(text) or {}
     entries = []
     for key, body in data.items():
         seen_keys.append((path, str(key)))

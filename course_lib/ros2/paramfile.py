@@ -8,6 +8,7 @@ from typing import Any
 
 import yaml
 
+from ..bounded_yaml import YamlTooLarge, safe_load_bounded
 from .results import CommandOutput
 from .values import ParamValue, parse_value
 
@@ -50,7 +51,9 @@ def _load_yaml(path: str, cwd: str | None) -> Any:
     stream = io.StringIO(text)
     stream.name = path  # PyYAML names the file in its messages, as the learner typed it
     try:
-        return yaml.safe_load(stream)
+        return safe_load_bounded(stream)
+    except YamlTooLarge as exc:  # the real tool would hang for minutes: say why at once
+        raise _refusal(str(exc)) from None
     except yaml.YAMLError as exc:
         kind = f"{type(exc).__module__}.{type(exc).__name__}"
         raise _crash(kind, str(exc)) from None

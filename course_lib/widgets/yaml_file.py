@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shlex
 from pathlib import Path
 from typing import Any
 
@@ -20,14 +21,15 @@ def cli_value(value: Any) -> str:
         return repr(value)
     if isinstance(value, int):
         return str(value)
-    text = yaml.safe_dump(value, default_flow_style=True).strip()
-    text = text.removesuffix("...").strip()
-    return f"'{text}'" if any(c in text for c in " []{},:#") else text
+    text = yaml.safe_dump(value, default_flow_style=True, width=1 << 16).strip()
+    return text.removesuffix("...").strip()
 
 
 def set_command(node: str, name: str, value: Any) -> str:
-    """Return the `ros2 param set` line that sets `name` of `node` to `value`."""
-    return f"ros2 param set {node} {name} {cli_value(value)}"
+    """Return the `ros2 param set` line that sets `name` of `node` to `value`, quoted for a
+    shell: pasted into a terminal, it sets exactly `value` (spaces and quotes included)."""
+    words = ("ros2", "param", "set", node, name, cli_value(value))
+    return " ".join(shlex.quote(word) for word in words)
 
 
 def params_yaml(node: str, values: dict[str, Any]) -> str:

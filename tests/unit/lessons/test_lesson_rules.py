@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shlex
 from pathlib import Path
 
 import pytest
@@ -97,6 +98,17 @@ def test_set_command_types_values_as_ros2cli_parses_them() -> None:
     assert set_command("/n", "velocity", 0.2) == "ros2 param set /n velocity 0.2"
     assert set_command("/n", "flag", False) == "ros2 param set /n flag false"
     assert set_command("/n", "count", 3) == "ros2 param set /n count 3"
+    assert set_command("/n", "gains", [1.0, 2.0]) == "ros2 param set /n gains '[1.0, 2.0]'"
+
+
+@pytest.mark.parametrize(
+    "value", ["it's here", "a b", "0.2", "", "$HOME `id`", [1.0, 2.5], ["a b", "c'd"], True, -3]
+)
+def test_a_set_command_pasted_into_a_shell_sets_exactly_the_value(value: object) -> None:
+    """The panel's printed line, split as bash splits it, gives ros2 the value itself."""
+    argv = shlex.split(set_command("/n", "p", value))
+    assert argv[:5] == ["ros2", "param", "set", "/n", "p"] and len(argv) == 6, argv
+    assert yaml.safe_load(argv[5]) == value
 
 
 def test_atomic_write_never_leaves_half_a_file(tmp_path: Path) -> None:
