@@ -101,7 +101,7 @@ def ensure_accounts(
     Needs root (the launcher checks it first).
     """
     accounts: list[Account] = []
-    passwords: dict[str, str] = {}
+    written: Path | None = None
     for name in names:
         try:
             pwd.getpwnam(name)
@@ -117,8 +117,7 @@ def ensure_accounts(
                 f"Could not create the Unix account {name!r}: {err.stderr.strip()}",
                 hint="create it yourself (`useradd --create-home NAME`), then retry.",
             ) from None
-        if password is not None:
-            passwords[name] = password
+        if password is not None:  # recorded before the next account: none is ever lost
+            written = _record_passwords(state, {name: password})
         accounts.append(Account(name, created=True))
-    written = _record_passwords(state, passwords) if passwords else None
     return accounts, written
