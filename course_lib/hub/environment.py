@@ -42,12 +42,13 @@ def _skipped(relative: str) -> bool:
 
 
 def source_files(repo: Path = REPO_ROOT) -> list[str]:
-    """Return the course's files relative to `repo`: git's view (tracked and new files) when
-    it is a clone, else every file outside the built and written folders."""
+    """Return the course's files relative to `repo`: in a clone, the files git tracks (never
+    an untracked one: a clone may hold secrets, and the copy is open to every learner), else
+    every file outside the built and written folders."""
     if (repo / ".git").exists() and shutil.which("git"):
         listed = (
             subprocess.run(
-                ["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"],
+                ["git", "ls-files", "--cached", "-z"],
                 cwd=repo,
                 capture_output=True,
                 check=True,

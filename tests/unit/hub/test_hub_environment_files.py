@@ -1,0 +1,19 @@
+"""The learners' copy of the course holds what git tracks, never a clone's untracked files."""
+
+from __future__ import annotations
+
+import subprocess
+from pathlib import Path
+
+from course_lib.hub.environment import source_files
+
+
+def test_an_untracked_file_of_the_clone_is_never_copied_for_the_learners(tmp_path: Path) -> None:
+    def git(*argv: str) -> None:
+        subprocess.run(["git", *argv], cwd=tmp_path, check=True, capture_output=True)
+
+    git("init", "-q")
+    (tmp_path / "course.py").write_text("print('course')\n")
+    git("add", "course.py")
+    (tmp_path / "secrets.env").write_text("TOKEN=do-not-share\n")  # neither added nor ignored
+    assert source_files(tmp_path) == ["course.py"]
