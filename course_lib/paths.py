@@ -39,12 +39,18 @@ _POSIX_TMP = Path(os.sep, "tmp")  # where Python's tempfile goes without TMPDIR:
 
 
 def _runtime_candidates() -> list[Path]:
-    """Return where the runtime folder may live, best first (TMPDIR's temp folder first)."""
+    """Return where the runtime folder may live, best first.
+
+    The user's XDG_RUNTIME_DIR is private by specification; a temp folder's name can be taken
+    first by another user (squatted), so a folder in the user's home, which nobody else can
+    create, comes last.
+    """
     name = f"ros2-course-{os.getuid()}"
-    found = [Path(tempfile.gettempdir()) / name]
-    if os.environ.get("XDG_RUNTIME_DIR"):  # private to the user by the XDG specification
+    found = []
+    if os.environ.get("XDG_RUNTIME_DIR"):
         found.append(Path(os.environ["XDG_RUNTIME_DIR"]) / "ros2-course")
-    found.append(_POSIX_TMP / name)
+    found += [Path(tempfile.gettempdir()) / name, _POSIX_TMP / name]
+    found.append(Path.home() / ".cache" / "ros2-course" / "run")
     return found
 
 
@@ -78,15 +84,31 @@ def runtime_dir() -> Path:
     other access, else RuntimeDirError says what to do. Its path leaves room for any socket
     name of the course within the 108-byte limit of Unix socket paths, whatever TMPDIR is.
     """
-    candidates = _runtime_candidates()
-    path = next(
-        (c for c in candidates if len(os.fsencode(c)) + 1 + SOCKET_NAME_MAX < _SUN_PATH_MAX),
-        candidates[-1],
+    fitting = [
+        c
+        for c in dict.fromkeys(_runtime_candidates())
+        if len(os.fsencode(c)) + 1 + SOCKET_NAME_MAX < _SUN_PATH_MAX
+    ]
+    refused: RuntimeDirError | None = None
+    for path in fitting:
+        try:
+            path.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
+            with contextlib.suppress(FileExistsError):
+                path.mkdir(mode=0o700)
+            _check_private(path)
+        except OSError:
+            continue  # a parent folder this user cannot write: the next candidate
+        except RuntimeDirError as exc:
+            if path.lstat().st_uid == os.getuid() and not path.is_symlink():
+                raise  # this user's own folder, left open: theirs to fix
+            refused = refused or exc  # another user's (squatted): the next candidate
+            continue
+        return path
+    raise refused or RuntimeDirError(
+        "No folder for the course's locks and sockets could be made.",
+        hint="set TMPDIR to a folder of your own (`mkdir -p ~/.cache/tmp && export "
+        "TMPDIR=~/.cache/tmp`), then retry.",
     )
-    with contextlib.suppress(FileExistsError):
-        path.mkdir(mode=0o700)
-    _check_private(path)
-    return path
 
 
 def learner_notebooks_dir() -> Path:

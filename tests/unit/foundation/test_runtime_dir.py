@@ -57,19 +57,41 @@ def test_open_to_others_is_refused_with_the_fix(tmpdir_is, short_tmp: Path) -> N
     assert f"chmod 700 {folder}" in str(raised.value)
 
 
-def test_a_link_is_refused(tmpdir_is, short_tmp: Path) -> None:
+@pytest.fixture
+def home_is(monkeypatch: pytest.MonkeyPatch, short_tmp: Path):  # type: ignore[no-untyped-def]
+    """Make the temp folders (TMPDIR's and /tmp) one folder and HOME another; return the
+    home's runtime folder."""
+    import course_lib.paths as paths
+
+    monkeypatch.setattr(paths, "_POSIX_TMP", short_tmp)
+    home = short_tmp / "home"
+    home.mkdir()
+    monkeypatch.setenv("HOME", str(home))
+    return home / ".cache" / "ros2-course" / "run"
+
+
+def test_a_link_squatting_the_name_is_passed_over(tmpdir_is, home_is, short_tmp: Path) -> None:
+    """Anyone can make a link in /tmp: the course goes to a folder nobody else can make."""
     target = short_tmp / "elsewhere"
     target.mkdir(mode=0o700)
     tmpdir_is(short_tmp).symlink_to(target)
-    with pytest.raises(RuntimeDirError, match="not a folder"):
-        runtime_dir()
+    assert runtime_dir() == home_is
+    assert stat.S_IMODE(home_is.lstat().st_mode) == 0o700
 
 
 @pytest.mark.skipif(os.geteuid() != 0, reason="giving a folder to another user needs root")
-def test_owned_by_another_user_is_refused(tmpdir_is, short_tmp: Path) -> None:
+def test_a_folder_squatted_by_another_user_is_passed_over(
+    tmpdir_is, home_is, short_tmp: Path
+) -> None:
     folder = tmpdir_is(short_tmp)
     folder.mkdir(mode=0o700)
-    os.chown(folder, 65534, 65534)  # nobody
+    os.chown(folder, 65534, 65534)  # nobody made it first
+    assert runtime_dir() == home_is
+    # with no safe folder left at all, the refusal says whose it is and what to do
+    shutil.rmtree(home_is)
+    home_is.parent.mkdir(parents=True, exist_ok=True)
+    home_is.mkdir(mode=0o700)
+    os.chown(home_is, 65534, 65534)
     with pytest.raises(RuntimeDirError) as raised:
         runtime_dir()
     assert "belongs to another user (uid 65534)" in str(raised.value)
