@@ -4,6 +4,10 @@ Run as `python -m course_lib.viz.server`; it prints `zmq_url=...` and `web_url=.
 listens, then serves until it is stopped (the session stops it, or it dies with the kernel).
 meshcat-python's own `Visualizer()` would start a server that outlives a killed kernel.
 
+Its command socket (meshcat's ZMQ, which takes any scene command, a JavaScript callback for
+the learner's browser included) is a Unix socket in the user's private runtime folder
+(`ipc://`), never a TCP port: no other account on the host can connect to it.
+
 The viewer's websocket accepts a browser page only from the origin it serves: the viewer page
 itself, or the Jupyter server (or hub) whose proxy forwards it, which keeps the request's Host.
 Other origins (any other web page open in the learner's browser) are refused, unless listed
@@ -17,13 +21,13 @@ import os
 import signal
 import sys
 from collections.abc import Iterable
+from pathlib import Path
 from urllib.parse import urlsplit
 
 import tornado.httpserver
 import tornado.ioloop
 import tornado.netutil
 import tornado.web
-import zmq
 from meshcat.servers.tree import SceneTree
 from meshcat.servers.zmqserver import (
     VIEWER_HTML,
@@ -33,7 +37,9 @@ from meshcat.servers.zmqserver import (
     ZMQWebSocketBridge,
 )
 
-__all__ = ["ORIGINS_ENV", "LocalBridge", "main", "origin_allowed"]
+from ..paths import runtime_dir
+
+__all__ = ["ORIGINS_ENV", "LocalBridge", "command_socket_url", "main", "origin_allowed"]
 
 ORIGINS_ENV = "COURSE_VIEWER_ORIGINS"
 
@@ -92,6 +98,13 @@ class _SameOriginWebSocket(WebSocketHandler):
         return origin_allowed(origin, self.request.headers.get("Host"), self.bridge.origins)
 
 
+def command_socket_url(pid: int | None = None) -> str:
+    """Return the ZMQ address of this process's command socket: private to this user."""
+    path = runtime_dir() / f"meshcat-{pid or os.getpid()}.sock"
+    path.unlink(missing_ok=True)  # a socket left by a killed server of a reused pid
+    return f"ipc://{path}"
+
+
 class LocalBridge(ZMQWebSocketBridge):
     """meshcat's bridge bound to one host, on ports the operating system picks.
 
@@ -118,8 +131,8 @@ class LocalBridge(ZMQWebSocketBridge):
             ]
         )
         self.ioloop = tornado.ioloop.IOLoop.current()
-        self.zmq_socket, self.zmq_stream, _ = self.setup_zmq(f"tcp://{host}:*")
-        self.zmq_url = self.zmq_socket.getsockopt(zmq.LAST_ENDPOINT).decode()
+        self.zmq_url = command_socket_url()
+        self.zmq_socket, self.zmq_stream, _ = self.setup_zmq(self.zmq_url)
         sockets = tornado.netutil.bind_sockets(port, address=host)
         server = tornado.httpserver.HTTPServer(self.app)
         server.add_sockets(sockets)
@@ -149,7 +162,10 @@ def main(argv: list[str] | None = None) -> int:
     loop = bridge.ioloop.asyncio_loop
     for signum in (signal.SIGINT, signal.SIGTERM):
         loop.add_signal_handler(signum, bridge.ioloop.stop)
-    bridge.run()
+    try:
+        bridge.run()
+    finally:
+        Path(bridge.zmq_url.removeprefix("ipc://")).unlink(missing_ok=True)
     return 0
 
 

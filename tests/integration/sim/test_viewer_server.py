@@ -23,6 +23,7 @@ from course_lib.viz.live import ServerWindow
 from course_lib.viz.server import ORIGINS_ENV, LocalBridge, origin_allowed
 
 HUB = "https://hub.example.org"
+_EARLY: dict[int, bytes] = {}  # bytes read past a handshake's headers, by socket
 
 
 @pytest.fixture(scope="module")
@@ -49,7 +50,11 @@ def server() -> Iterator[tuple[str, int]]:
 
 
 def _handshake(port: int, headers: dict[str, str]) -> tuple[int, socket.socket]:
-    """Open the viewer's websocket with `headers`; return the HTTP status and the socket."""
+    """Open the viewer's websocket with `headers`; return the HTTP status and the socket.
+
+    The server may send its first frame in the same packet as its reply's headers: what came
+    after the headers is kept in `_EARLY` for `_first_frame`.
+    """
     sock = socket.create_connection(("127.0.0.1", port), timeout=10)
     fields = {
         "Host": f"127.0.0.1:{port}",
@@ -67,6 +72,7 @@ def _handshake(port: int, headers: dict[str, str]) -> tuple[int, socket.socket]:
         if not chunk:
             break
         reply += chunk
+    _EARLY[sock.fileno()] = reply.partition(b"\r\n\r\n")[2]
     return int(reply.split(b" ", 2)[1]), sock
 
 
@@ -79,15 +85,23 @@ def _connect(port: int, headers: dict[str, str]) -> int:
 
 def _first_frame(sock: socket.socket) -> bytes:
     """Read one (unmasked, server-to-client) websocket frame's payload."""
-    reader = sock.makefile("rb")
-    try:
-        header = reader.read(2)
-        length = header[1] & 0x7F
-        if length >= 126:
-            length = int.from_bytes(reader.read(2 if length == 126 else 8), "big")
-        return reader.read(length)
-    finally:
-        reader.close()
+    buffer = _EARLY.pop(sock.fileno(), b"")
+
+    def read(count: int) -> bytes:
+        nonlocal buffer
+        while len(buffer) < count:
+            chunk = sock.recv(65536)
+            if not chunk:
+                break
+            buffer += chunk
+        taken, buffer = buffer[:count], buffer[count:]
+        return taken
+
+    header = read(2)
+    length = header[1] & 0x7F
+    if length >= 126:
+        length = int.from_bytes(read(2 if length == 126 else 8), "big")
+    return read(length)
 
 
 def test_the_viewer_page_own_origin_is_accepted(server: tuple[str, int]) -> None:
@@ -155,3 +169,42 @@ def test_local_bridge_sets_what_meshcats_init_sets() -> None:
     finally:
         bridge.zmq_stream.close()
     assert not missing, f"meshcat's bridge now also sets {sorted(missing)}: update LocalBridge"
+
+
+def _url_reply(zmq_url: str) -> bytes | None:
+    """Ask the command socket meshcat's `url` question; return the answer, None if none came."""
+    import zmq
+
+    context = zmq.Context()
+    try:
+        sock = context.socket(zmq.REQ)
+        sock.setsockopt(zmq.LINGER, 0)
+        sock.setsockopt(zmq.RCVTIMEO, 2000)
+        sock.setsockopt(zmq.SNDTIMEO, 2000)
+        sock.connect(zmq_url)
+        sock.send(b"url")
+        return sock.recv()
+    except zmq.ZMQError:
+        return None
+    finally:
+        context.destroy(linger=0)
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="acting as another account needs root")
+def test_another_account_cannot_reach_the_command_socket(server: tuple[str, int]) -> None:
+    """meshcat's command socket takes any scene command, a JavaScript callback included: it
+    must answer its own user only (a TCP port on 127.0.0.1 answered every account)."""
+    zmq_url, _port = server
+    assert _url_reply(zmq_url) is not None, "the owner's own question went unanswered"
+    child = os.fork()
+    if child == 0:  # another account: nobody
+        code = 3
+        try:
+            os.setgroups([])
+            os.setgid(65534)
+            os.setuid(65534)
+            code = 0 if _url_reply(zmq_url) is None else 1
+        finally:
+            os._exit(code)
+    _, status = os.waitpid(child, 0)
+    assert os.waitstatus_to_exitcode(status) == 0, f"another account reached {zmq_url}"
