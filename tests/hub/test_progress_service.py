@@ -14,6 +14,7 @@ import requests
 from progress_hub import ADMIN, ADMIN_PASSWORD, PASSWORD, ClassHub
 
 from course_lib.hub.progress import SERVICE_NAME
+from course_lib.hub.progress.app import MAX_BODY_BYTES, MAX_READ_BYTES
 from course_lib.lessons import progress_report
 from course_lib.lessons.report import SelfCheck, check
 
@@ -165,6 +166,24 @@ def test_a_bad_record_is_400(
     assert answer.status_code == 400, answer.text
     assert says in answer.json()["error"]
     assert not [r for r in records(admin, hub) if r["lesson"] in (0, 4, 12)]
+
+
+@pytest.mark.parametrize("size", [MAX_BODY_BYTES + 1, 10 * MAX_READ_BYTES])
+def test_a_huge_body_is_refused_before_anything_is_read_or_stored(
+    hub: ClassHub, admin: requests.Session, size: int
+) -> None:
+    """Anyone on the host can reach the service: a body of any size must not cost it memory."""
+    padding = "x" * size
+    body = f'{{"user": "alice", "lesson": 5, "passed": true, "failed": "{padding}"}}'.encode()
+    try:
+        answer = post(hub, None, None, raw=body)
+    except (requests.ConnectionError, requests.exceptions.ChunkedEncodingError):  # refused unread
+        answer = None
+    if answer is not None:
+        assert answer.status_code in (400, 413), answer.text
+        if size <= MAX_READ_BYTES:
+            assert answer.status_code == 413 and "at most 4096 bytes" in answer.text
+    assert not [r for r in records(admin, hub) if padding[:100] in str(r)]
 
 
 def test_a_learner_cannot_see_the_page(hub: ClassHub) -> None:

@@ -46,7 +46,7 @@ async def _serve(db: Path) -> None:
     from jupyterhub.services.auth import HubOAuth
 
     from ...lessons.lesson import TITLES
-    from .app import ServiceContext, make_app
+    from .app import MAX_READ_BYTES, ServiceContext, make_app
     from .store import ProgressStore
 
     store = ProgressStore(db)
@@ -55,7 +55,9 @@ async def _serve(db: Path) -> None:
     prefix = os.environ.get("JUPYTERHUB_SERVICE_PREFIX", f"/services/{SERVICE_NAME}/")
     app = make_app(context, prefix, cookie_secret=secrets.token_bytes(32))
     address = urlparse(os.environ["JUPYTERHUB_SERVICE_URL"])
-    server = app.listen(address.port or 80, address.hostname or "127.0.0.1")
+    server = app.listen(
+        address.port or 80, address.hostname or "127.0.0.1", max_body_size=MAX_READ_BYTES
+    )
     logging.getLogger(SERVICE_NAME).info(
         "serving %s on %s, records in %s", prefix, address.netloc, db
     )

@@ -25,6 +25,10 @@ from .store import ProgressStore, StoreError
 __all__ = ["Refusal", "ServiceContext", "make_app"]
 
 
+MAX_BODY_BYTES = 4096  # a record is about 100 bytes; its `failed` sentence fits many times
+MAX_READ_BYTES = 65536  # the server reads no more of any request (bigger: refused unread)
+
+
 class Refusal(web.HTTPError):
     """An answer other than success, with a sentence for the body (not the status line)."""
 
@@ -56,6 +60,9 @@ class _HubHandler(HubOAuthenticated, web.RequestHandler):
         self.hub_auth = context.auth
 
     async def prepare(self) -> None:
+        length = int(self.request.headers.get("Content-Length") or len(self.request.body))
+        if length > MAX_BODY_BYTES:  # before asking the hub anything: nobody's record is that big
+            raise Refusal(413, f"A record is at most {MAX_BODY_BYTES} bytes.")
         # Ask the hub once without blocking the loop; `current_user` then reads the cache.
         await self.hub_auth.get_user(self, sync=False)
 
