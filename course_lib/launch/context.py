@@ -36,6 +36,7 @@ class LaunchContext:
         self.event_queue: deque[Event] = deque()
         self.planned_processes: list[Any] = []  # processes found when only describing
         self.messages: list[tuple[str, str, str]] = []  # (logger, level, text) when describing
+        self.code_run: list[str] = []  # the Python expressions and commands reading it ran
 
     @property
     def locals(self) -> SimpleNamespace:

@@ -190,6 +190,11 @@ def dry_run_file(path: str, launch_arguments: list[tuple[str, str]]) -> DryRunRe
     seen_keys: list[tuple[str, str]] = []
     report.nodes = [_plan(p, seen_keys) for p in context.planned_processes if isinstance(p, Node)]
     _warnings(report, seen_keys)
+    report.warnings += [
+        f"reading this launch file ran {code} (as `ros2 launch` does: read a launch file "
+        "from someone you trust only)"
+        for code in dict.fromkeys(context.code_run)
+    ]
     return report
 
 

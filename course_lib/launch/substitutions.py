@@ -119,6 +119,13 @@ class PathJoinSubstitution(Substitution):
         return f"PathJoin('{' + '.join(describe_all(s) for s in self.substitutions)}')"
 
 
+def _note_code_run(context: Any, what: str) -> None:
+    """Remember that evaluating ran code (a dry run says so)."""
+    ran = getattr(context, "code_run", None)
+    if ran is not None:
+        ran.append(what)
+
+
 class PythonExpression(Substitution):
     """Evaluate a Python expression (with `math` available), as real launch does."""
 
@@ -133,7 +140,9 @@ class PythonExpression(Substitution):
             if module is math:  # launch lets expressions use math's names bare
                 scope.update(vars(module))
             scope[module.__name__] = module
-        return str(eval(perform_substitutions(context, self.expression), {}, scope))
+        expression = perform_substitutions(context, self.expression)
+        _note_code_run(context, f"a Python expression: {expression}")
+        return str(eval(expression, {}, scope))
 
     def describe(self) -> str:
         return f"PythonExpr({describe_all(self.expression)})"
@@ -256,6 +265,7 @@ class Command(Substitution):
                 "expected 'on_stderr' to be one of: 'fail', 'ignore', 'warn' or 'capture'"
             )
         stderr = subprocess.STDOUT if on_stderr == "capture" else subprocess.PIPE
+        _note_code_run(context, f"a command: {text}")
         try:
             result = subprocess.run(
                 shlex.split(text), stdout=subprocess.PIPE, stderr=stderr, text=True, check=False

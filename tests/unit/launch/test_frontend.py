@@ -90,3 +90,22 @@ def test_tags_and_substitutions_the_course_lacks_fail_in_one_line(tmp_path: Path
     typo.write_text("<launch><nodee/></launch>")
     with pytest.raises(Exception, match="Unrecognized entity of the type: nodee"):
         load_any_launch_file(str(typo))
+
+
+def test_a_dry_run_says_which_code_reading_the_file_ran(tmp_path: Path) -> None:
+    """$(eval) and $(command) run code while the file is read, as upstream: the dry run says so."""
+    from course_lib.launch.dry_run import dry_run_file
+
+    path = tmp_path / "code.launch.xml"
+    path.write_text(
+        '<launch>\n  <let name="a" value="$(eval \'2 * 21\')"/>\n'
+        '  <let name="b" value="$(command \'echo hi\')"/>\n</launch>\n'
+    )
+    warnings = dry_run_file(str(path), []).warnings
+    assert [w.split(" (as")[0] for w in warnings] == [
+        "reading this launch file ran a Python expression: 2 * 21",
+        "reading this launch file ran a command: echo hi",
+    ]
+    plain = tmp_path / "plain.launch.xml"
+    plain.write_text('<launch>\n  <let name="a" value="42"/>\n</launch>\n')
+    assert dry_run_file(str(plain), []).warnings == []
