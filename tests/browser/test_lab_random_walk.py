@@ -15,7 +15,7 @@ from walk import Walker, walk_settings
 
 pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 
-SHORT_STEPS = 6
+SHORT_STEPS = 10
 SOAK_STEPS = 100
 
 
@@ -34,5 +34,5 @@ def test_soak_random_walk(lab_page, artifacts: Path) -> None:
         walker.random_walk(seed, steps)
     finally:
         for line in walker.summary(seed):
-            print(f"soak: {line}", flush=True)
+            walker.log(f"soak: {line}")
     assert not walker.defects, walker.report(seed)

@@ -40,6 +40,7 @@ RERUNNABLE = (
     "events = lesson.events_table()",
     "lesson.self_check()",
 )
+OPEN_CHANCE = 0.6  # of opening one more lesson, while one is left to open
 
 
 def walk_settings(default_steps: int) -> tuple[int, int]:
@@ -50,6 +51,10 @@ def walk_settings(default_steps: int) -> tuple[int, int]:
         int(seed) if seed else random.SystemRandom().randrange(1_000_000),
         int(steps) if steps else default_steps,
     )
+
+
+def _say(line: str) -> None:
+    print(line, flush=True)
 
 
 @dataclass
@@ -70,7 +75,7 @@ class Walker:
 
     ui: LabPage
     artifacts: Path
-    say: Callable[[str], None] = print
+    say: Callable[[str], None] = _say
     opened: list[str] = field(default_factory=list)
     defects: list[str] = field(default_factory=list)
     steps: int = 0
@@ -124,7 +129,7 @@ class Walker:
     def do(self, step: Step) -> None:
         """Do one step and record, instead of raising, whatever failed in it."""
         self.steps += 1
-        self.say(f"walk step {self.steps}: {step}")
+        self.log(f"walk step {self.steps}: {step}")
         started = time.monotonic()
         try:
             if step.kind == "rerun_cell":
@@ -135,17 +140,24 @@ class Walker:
             self._record([f"{exc}"])
         except Exception as exc:  # a Playwright timeout or a closed page: a defect too
             self._record([f"{type(exc).__name__}: {exc}"])
-        self.say(f"  ({time.monotonic() - started:.0f} s)")
+        self.log(f"  ({time.monotonic() - started:.0f} s)")
 
     def _check_run(self, name: str) -> None:
         self._record(run_problems(name, self.ui.cells()))
 
     def _record(self, problems: list[str]) -> None:
         for problem in problems:
-            number = len(self.defects) + 1
             self.defects.append(f"step {self.steps}: {problem}")
-            self.say(f"  DEFECT {number}: {problem}")
-            self.ui.screenshot(self.artifacts / f"defect_{number:03d}_step_{self.steps}.png")
+            self.log(f"  DEFECT {len(self.defects)}: {problem}")
+        shot = self.artifacts / f"step_{self.steps:03d}_defect.png"
+        if problems and not shot.exists():
+            self.ui.screenshot(shot)
+
+    def log(self, line: str) -> None:
+        """Say `line` and keep it in the test's walk.log (a soak's record)."""
+        self.say(line)
+        with open(self.artifacts / "walk.log", "a", encoding="utf-8") as file:
+            file.write(line + "\n")
 
     def summary(self, seed: int | None = None) -> list[str]:
         """Return the walk's summary, one line each: steps, defects, seed."""
@@ -158,10 +170,10 @@ class Walker:
 
     # --- a random walk --------------------------------------------------------------------------
     def choose(self, rng: random.Random) -> Step:
-        """Choose the next step: open a lesson not open yet (more likely while few are open),
-        or do something to an open one."""
+        """Choose the next step: open a lesson not open yet (some chance while one is left), or
+        do something to an open one."""
         closed = [name for name in LESSONS if name not in self.opened]
-        if not self.opened or (closed and rng.random() < len(closed) / len(LESSONS) + 0.2):
+        if not self.opened or (closed and rng.random() < OPEN_CHANCE):
             return Step("open", rng.choice(closed))
         name = rng.choice(self.opened)
         kind = rng.choice(["run_all", "restart", "first_then_all", "rerun_cell", "rerun_cell"])
@@ -172,7 +184,7 @@ class Walker:
 
     def random_walk(self, seed: int, steps: int) -> None:
         """Walk `steps` random steps from `seed`, then check the graph from a terminal."""
-        self.say(f"walk seed: {seed} (replay: WALK_SEED={seed} WALK_STEPS={steps})")
+        self.log(f"walk seed: {seed} (replay: WALK_SEED={seed} WALK_STEPS={steps})")
         rng = random.Random(seed)
         for _ in range(steps):
             self.do(self.choose(rng))
