@@ -250,9 +250,15 @@ class LabPage:
         return self.cells()[cell.index]
 
     def _click_editor(self, index: int) -> None:
-        """Click into a code cell's editor, near its top left corner (never under a toast)."""
-        editor = self.page.locator(f"{_PANEL} .jp-CodeCell").nth(index)
-        editor.locator(".jp-InputArea-editor").click(position={"x": 8, "y": 8})
+        """Click into the editor of the `index`th code cell, near its top left corner (never
+        under a notification)."""
+        editor = self.page.evaluate_handle(
+            f"(index) => {{ {_FRONT}\n"
+            " return codeCells()[index].node.querySelector('.jp-InputArea-editor'); }",
+            index,
+        ).as_element()
+        assert editor is not None, f"{self.current()} has no code cell {index}"
+        editor.click(position={"x": 8, "y": 8})
 
     def add_cell(self, code: str) -> Cell:
         """Add a code cell at the end of the notebook in front, run it; return it."""

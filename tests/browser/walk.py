@@ -134,6 +134,8 @@ class Walker:
         try:
             if step.kind == "rerun_cell":
                 self.rerun_cell(step.lesson, step.detail)
+            elif step.kind == "check_graph":
+                self.check_graph()
             else:
                 getattr(self, step.kind)(step.lesson)
         except AssertionError as exc:
@@ -182,13 +184,22 @@ class Walker:
         sources = [source for source in RERUNNABLE if source in _sources(name)]
         return Step(kind, name, rng.choice(sources))
 
+    def can_go_on(self) -> bool:
+        """Return False, recording why, once the lab or the browser tab is gone."""
+        if self.ui.lab.process.alive and not self.ui.page.is_closed():
+            return True
+        self._record([f"the lab or its browser tab stopped: the walk ends\n{self.ui.lab.text()}"])
+        return False
+
     def random_walk(self, seed: int, steps: int) -> None:
         """Walk `steps` random steps from `seed`, then check the graph from a terminal."""
         self.log(f"walk seed: {seed} (replay: WALK_SEED={seed} WALK_STEPS={steps})")
         rng = random.Random(seed)
         for _ in range(steps):
+            if not self.can_go_on():
+                return
             self.do(self.choose(rng))
-        self.check_graph()
+        self.do(Step("check_graph", "the lab"))
 
 
 def _sources(name: str) -> str:
