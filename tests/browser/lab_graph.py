@@ -15,22 +15,23 @@ from terminal import Terminal
 __all__ = ["graph_problems", "publishers", "wait_publishers"]
 
 
-def graph_problems(terminal: Terminal) -> list[str]:
+def graph_problems(terminal: Terminal, worlds: int = 1) -> list[str]:
     """Return what is wrong with the lab's ROS 2 graph, as `ros2` in a lab terminal shows it:
-    exactly one /mujoco, no node name twice, one publisher of /clock."""
+    `worlds` /mujoco nodes (one once a lesson started the world), no node name twice, and as
+    many publishers of /clock."""
     problems = []
     nodes, code = terminal.run_to_end("ros2 node list")
     names = [line.strip() for line in _plain(nodes).splitlines() if line.strip().startswith("/")]
     twice = sorted(name for name, count in Counter(names).items() if count > 1)
-    if code != 0 or names.count("/mujoco") != 1 or twice:
+    if code != 0 or names.count("/mujoco") != worlds or twice:
         problems.append(
-            f"`ros2 node list` (exit {code}) should list /mujoco once and no name twice "
-            f"(twice: {twice}):\n{_plain(nodes).strip()}"
+            f"`ros2 node list` (exit {code}) should list /mujoco {worlds} time(s) and no name "
+            f"twice (twice: {twice}):\n{_plain(nodes).strip()}"
         )
     clock, code = terminal.run_to_end("ros2 topic info /clock")
-    if code != 0 or "Publisher count: 1\n" not in _plain(clock):
+    if worlds and (code != 0 or f"Publisher count: {worlds}\n" not in _plain(clock)):
         problems.append(
-            f"`ros2 topic info /clock` (exit {code}) should say Publisher count: 1:\n"
+            f"`ros2 topic info /clock` (exit {code}) should say Publisher count: {worlds}:\n"
             f"{_plain(clock).strip()}"
         )
     return problems

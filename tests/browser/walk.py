@@ -40,6 +40,7 @@ RERUNNABLE = (
     "events = lesson.events_table()",
     "lesson.self_check()",
 )
+WORLD_LESSONS = (3, 6, 7, 11)  # the lessons that start (or attach to) the lab's world
 OPEN_CHANCE = 0.6  # of opening one more lesson, while one is left to open
 
 
@@ -79,6 +80,7 @@ class Walker:
     opened: list[str] = field(default_factory=list)
     defects: list[str] = field(default_factory=list)
     steps: int = 0
+    _at: str = "start"  # the step running, to name where a defect was found
 
     # --- the steps ------------------------------------------------------------------------------
     def open(self, name: str) -> None:
@@ -118,18 +120,24 @@ class Walker:
         self._record(cell_problems(name, cell))
 
     def check_graph(self) -> None:
-        """Check the lab's graph from a lab terminal (one /mujoco, one /clock publisher)."""
+        """Check the lab's graph from a lab terminal: one /mujoco and one /clock publisher once
+        a lesson started the world, none before."""
+        world = any(lesson_number(name) in WORLD_LESSONS for name in self.opened)
         terminal = Terminal(self.ui.page, self.ui.lab.base_url, self.ui.lab.token)
         try:
-            self._record(graph_problems(terminal))
+            self._record(graph_problems(terminal, worlds=int(world)))
         finally:
             terminal.close()
 
     # --- running steps and recording defects -----------------------------------------------------
     def do(self, step: Step) -> None:
         """Do one step and record, instead of raising, whatever failed in it."""
-        self.steps += 1
-        self.log(f"walk step {self.steps}: {step}")
+        if step.kind == "check_graph":  # the end of a walk, not one of its steps
+            self._at = "end of the walk"
+        else:
+            self.steps += 1
+            self._at = f"step {self.steps}"
+        self.log(f"walk {self._at}: {step}")
         started = time.monotonic()
         try:
             if step.kind == "rerun_cell":
@@ -149,9 +157,9 @@ class Walker:
 
     def _record(self, problems: list[str]) -> None:
         for problem in problems:
-            self.defects.append(f"step {self.steps}: {problem}")
+            self.defects.append(f"{self._at}: {problem}")
             self.log(f"  DEFECT {len(self.defects)}: {problem}")
-        shot = self.artifacts / f"step_{self.steps:03d}_defect.png"
+        shot = self.artifacts / f"{self._at.replace(' ', '_')}_defect.png"
         if problems and not shot.exists():
             self.ui.screenshot(shot)
 
