@@ -60,6 +60,7 @@ _SETTLED = """(oneCell) => {
   return done;
 }"""
 _KERNEL_STATUS = ".jp-StatusBar-Widget"
+_ACTION_TIMEOUT_MS = 120_000
 
 
 class UnexpectedDialog(AssertionError):
@@ -107,9 +108,12 @@ class LabPage:
     def __init__(self, page: Any, lab: Any, timeout_s: float = 300.0) -> None:
         self.page, self.lab = page, lab
         self.timeout_ms = timeout_s * 1000
+        # A click is done when the page took it: a page drawing a live 3D view in software on
+        # a busy machine can take longer than Playwright's default 30 s.
+        page.set_default_timeout(_ACTION_TIMEOUT_MS)
         folder = lab.folder.relative_to(_repo_root())
         page.goto(f"{lab.base_url}/lab/tree/{folder}?reset&token={lab.token}")
-        page.locator(".jp-DirListing-item").first.wait_for(timeout=120_000)
+        page.locator(".jp-DirListing-item").first.wait_for()
 
     # --- what the page shows ---------------------------------------------------------------
     def cells(self) -> list[Cell]:
@@ -180,7 +184,7 @@ class LabPage:
                 && !!panel.querySelector('.jp-CodeCell');
             }""",
             arg=name,
-            timeout=120_000,
+            timeout=_ACTION_TIMEOUT_MS,
         )
 
     def _wait_kernel(self, status: str, doing: str) -> None:
@@ -195,7 +199,7 @@ class LabPage:
                   return !!bar && bar.innerText.split('\\n').some((l) => RegExp(pattern).test(l));
                 }""",
                 arg=[status],
-                timeout=120_000,
+                timeout=_ACTION_TIMEOUT_MS,
             )
         except PlaywrightTimeout:
             raise AssertionError(
@@ -236,7 +240,7 @@ class LabPage:
         self._menu("Kernel", "Restart Kernel and Run All Cells…")
         dialog = self.page.locator(".jp-Dialog", has_text="Restart Kernel?")
         dialog.get_by_role("button", name="Confirm Kernel Restart").click()
-        dialog.wait_for(state="detached", timeout=30_000)
+        dialog.wait_for(state="detached")
         self._wait_settled(doing)
 
     def run_cell(self, cell: Cell) -> Cell:
@@ -279,7 +283,7 @@ class LabPage:
         self._menu("Kernel", "Shut Down All Kernels…")
         dialog = self.page.locator(".jp-Dialog", has_text="Shut Down All?")
         dialog.get_by_role("button", name="Shut Down All").click()
-        dialog.wait_for(state="detached", timeout=30_000)
+        dialog.wait_for(state="detached")
         self._wait_kernel(r"^No Kernel", "Kernel > Shut Down All Kernels…")
 
     def screenshot(self, path: Any) -> None:
