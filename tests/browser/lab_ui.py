@@ -148,11 +148,29 @@ class LabPage:
         return dialogs.first.inner_text() if dialogs.count() else ""
 
     def fail_on_dialog(self, doing: str) -> None:
-        """Fail (closing it with Escape, so a walk can go on) if a dialog is shown."""
-        text = self.dialog_text()
-        if text:
-            self.page.keyboard.press("Escape")
-            raise UnexpectedDialog(f"JupyterLab asked, after {doing}:\n{text}")
+        """Fail (closing the dialogs, so a walk can go on) if a dialog is shown."""
+        texts = self.dismiss_dialogs()
+        if texts:
+            raise UnexpectedDialog(f"JupyterLab asked, after {doing}:\n" + "\n".join(texts))
+
+    def dismiss_dialogs(self, most: int = 5) -> list[str]:
+        """Close the dialogs shown (Cancel where there is one, else Escape); return their text."""
+        texts = []
+        dialogs = self.page.locator(".jp-Dialog")
+        while (shown := dialogs.count()) and len(texts) < most:
+            texts.append(dialogs.first.inner_text())
+            reject = dialogs.first.locator("button.jp-mod-reject")
+            if reject.count():
+                reject.first.click()
+            else:
+                self.page.keyboard.press("Escape")
+            with contextlib.suppress(Exception):  # another dialog may take its place
+                self.page.wait_for_function(
+                    "(shown) => document.querySelectorAll('.jp-Dialog').length < shown",
+                    arg=shown,
+                    timeout=10_000,
+                )
+        return texts
 
     # --- opening and switching ------------------------------------------------------------------
     def open(self, name: str) -> None:

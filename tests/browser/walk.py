@@ -140,6 +140,8 @@ class Walker:
         self.log(f"walk {self._at}: {step}")
         started = time.monotonic()
         try:
+            left = self.ui.dismiss_dialogs()  # what an earlier step left open
+            self._record([f"a dialog was left open: {text}" for text in left])
             if step.kind == "rerun_cell":
                 self.rerun_cell(step.lesson, step.detail)
             elif step.kind == "check_graph":
