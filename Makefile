@@ -9,7 +9,7 @@ STAMP_WS := rosject/install/.built
 # added or removed (setup.py installs them by glob).
 ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
 
-.PHONY: lab setup hub test test-fast bench notebooks lint format clean doctor stop smoke-python
+.PHONY: lab setup hub test test-fast soak bench notebooks lint format clean doctor stop smoke-python
 
 lab: setup  ## Start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
 	$(PY) -m course_lib lab $(EXTRA)
@@ -24,6 +24,9 @@ test: setup  ## Run the whole test suite (unit, integration, notebooks, browser)
 
 test-fast: setup  ## Unit tests only (no ROS, milliseconds)
 	$(PY) -m pytest tests/unit -q
+
+soak: setup  ## A long random walk through the lessons in one lab (WALK_STEPS=100, WALK_SEED=random)
+	WALK_SOAK=1 WALK_STEPS=$(or $(WALK_STEPS),100) WALK_SEED=$(WALK_SEED) $(PY) -m pytest tests/browser/test_lab_random_walk.py -k soak -s
 
 bench: setup  ## Print the course's speed and memory figures
 	$(PY) -m bench

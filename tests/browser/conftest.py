@@ -85,3 +85,33 @@ def page(browser, lab, request: pytest.FixtureRequest):  # type: ignore[no-untyp
     tab.goto(lab.lab_url(request.module.LESSONS[0]))
     yield tab
     tab.close()
+
+
+@pytest.fixture
+def lab_page(browser, request: pytest.FixtureRequest) -> Iterator[object]:  # type: ignore[no-untyped-def]
+    """A lab of its own for each attempt (a rerun inherits nothing) on copies of the module's
+    LESSONS, laid out as a learner's copy on a hub is (`notebooks/`, `rosject` beside it, their
+    own `my_files/`), and one browser tab on it with the file browser on the lessons."""
+    from lab_ui import LabPage
+
+    from course_lib.paths import LEARNER_ROOT_ENV, ROSJECT_DIR
+    from course_lib.testing import independent_env
+
+    root = ARTIFACTS / f"lab-{request.node.name}"
+    shutil.rmtree(root, ignore_errors=True)
+    (root / "notebooks" / "my_files").mkdir(parents=True)
+    (root / "rosject").symlink_to(ROSJECT_DIR, target_is_directory=True)
+    server = LabServer(
+        request.module.LESSONS,
+        root / "notebooks",
+        env=independent_env(**{LEARNER_ROOT_ENV: str(root)}),
+        extra=["--LabApp.expose_app_in_browser=True"],  # the tests read cells from the model
+    )
+    try:
+        tab = browser.new_page(viewport={"width": 1280, "height": 1000})
+        try:
+            yield LabPage(tab, server)
+        finally:
+            tab.close()
+    finally:
+        server.stop()

@@ -11,21 +11,32 @@ _BUSY_PROMPTS = (
 
 
 def run_all_cells(page) -> None:  # type: ignore[no-untyped-def]
-    """Wait for an idle kernel, then Run > Run All Cells from the menu."""
+    """Wait for an idle kernel, then Run > Run All Cells from the menu.
+
+    A dialog instead (JupyterLab's "Select Kernel", asked when the notebook has no kernel) is a
+    failure, never clicked away: a learner's Run All runs every cell without asking.
+    """
     idle = page.get_by_text("Python 3 (ipykernel) | Idle")
-    choose = page.get_by_role("button", name="Select", exact=True)
-    idle.or_(choose).first.wait_for(timeout=60_000)
-    if choose.is_visible():  # a notebook whose kernel was shut down asks for one: Python 3
-        choose.click()
-        idle.wait_for(timeout=60_000)
+    dialog = page.locator(".jp-Dialog")
+    idle.or_(dialog).first.wait_for(timeout=60_000)
+    fail_on_dialog(page, "opening the notebook")
     page.get_by_role("menuitem", name="Run", exact=True).click()
     page.get_by_role("menuitem", name="Run All Cells", exact=True).click()
+    fail_on_dialog(page, "Run > Run All Cells")
+
+
+def fail_on_dialog(page, after: str) -> None:  # type: ignore[no-untyped-def]
+    """Fail, with its text, if JupyterLab shows a dialog (e.g. "Select Kernel")."""
+    dialog = page.locator(".jp-Dialog")
+    if dialog.count():
+        raise AssertionError(f"JupyterLab asked, after {after}:\n{dialog.first.inner_text()}")
 
 
 def wait_all_ran(page, artifacts: Path) -> None:  # type: ignore[no-untyped-def]
     """Wait until no cell runs, keep a full-page screenshot, and fail if a cell failed."""
     page.wait_for_function(_BUSY_PROMPTS, timeout=90_000)
     page.screenshot(path=str(artifacts / "page_done.png"), full_page=True)
+    fail_on_dialog(page, "Run All")
     errors = page.locator('[data-mime-type="application/vnd.jupyter.error"]')
     assert errors.count() == 0, f"a cell failed: {errors.first.inner_text()[:2000]}"
 

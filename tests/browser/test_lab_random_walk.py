@@ -1,0 +1,38 @@
+"""A seeded random walk through the lessons in one lab, each left running.
+
+`WALK_SEED` and `WALK_STEPS` replay a walk (its seed is printed, and every step); the soak
+(`make soak`, `WALK_SOAK=1`) walks at least 100 steps and prints what it found.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+from lesson_checks import LESSONS  # noqa: F401 (the lab_page fixture copies them)
+from walk import Walker, walk_settings
+
+pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
+
+SHORT_STEPS = 10
+SOAK_STEPS = 100
+
+
+def test_a_short_random_walk(lab_page, artifacts: Path) -> None:
+    seed, steps = walk_settings(SHORT_STEPS)
+    walker = Walker(lab_page, artifacts)
+    walker.random_walk(seed, steps)
+    assert not walker.defects, walker.report(seed)
+
+
+@pytest.mark.skipif(not os.environ.get("WALK_SOAK"), reason="a soak: `make soak` runs it")
+def test_soak_random_walk(lab_page, artifacts: Path) -> None:
+    seed, steps = walk_settings(SOAK_STEPS)
+    walker = Walker(lab_page, artifacts)
+    try:
+        walker.random_walk(seed, steps)
+    finally:
+        for line in walker.summary(seed):
+            walker.log(f"soak: {line}")
+    assert not walker.defects, walker.report(seed)

@@ -1,0 +1,222 @@
+"""A learner's walk through the lessons in one lab: steps, their checks, and the defects found.
+
+Every step is what a learner does in JupyterLab (open a lesson and Run All, restart a kernel
+and Run All, run one cell again, ...), each lesson left running. A step's checks that fail are
+recorded as defects and the walk goes on where it can; `Walker.summary()` says what was found.
+A random walk prints its seed and every step, so `WALK_SEED=... WALK_STEPS=...` replays it.
+"""
+
+from __future__ import annotations
+
+import os
+import random
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lab_graph import graph_problems
+from lab_ui import LabPage
+from lesson_checks import LESSONS, PROBES, cell_problems, lesson_number, run_problems
+from terminal import Terminal
+
+__all__ = ["Step", "Walker", "walk_settings"]
+
+# Cells a learner may run again at any time, in any state of the lab (never a cell whose
+# answer depends on the cell before it, such as lesson 2's `lesson.stop`).
+RERUNNABLE = (
+    "lesson = start(",
+    "environment_report()",
+    "%ros2 pkg executables",
+    "%ros2 node list",
+    "%ros2 topic list",
+    "%ros2 param list",
+    "compare_topics()",
+    "lesson.show_source(",
+    "world = lesson.world(",
+    "%ros2 run parameter_tests param_vel",
+    "%ros2 run parameter_descriptors descriptor_vel",
+    "plot = lesson.speed_plot()",
+    "events = lesson.events_table()",
+    "lesson.self_check()",
+)
+WORLD_LESSONS = (3, 6, 7, 11)  # the lessons that start (or attach to) the lab's world
+OPEN_CHANCE = 0.6  # of opening one more lesson, while one is left to open
+
+
+def walk_settings(default_steps: int) -> tuple[int, int]:
+    """Return (seed, steps) from WALK_SEED and WALK_STEPS; a random seed if WALK_SEED is unset."""
+    seed = os.environ.get("WALK_SEED")
+    steps = os.environ.get("WALK_STEPS")
+    return (
+        int(seed) if seed else random.SystemRandom().randrange(1_000_000),
+        int(steps) if steps else default_steps,
+    )
+
+
+def _say(line: str) -> None:
+    print(line, flush=True)
+
+
+@dataclass
+class Step:
+    """One step of a walk: what the learner does, to which lesson."""
+
+    kind: str
+    lesson: str
+    detail: str = ""
+
+    def __str__(self) -> str:
+        return f"{self.kind} {self.lesson}{f' ({self.detail})' if self.detail else ''}"
+
+
+@dataclass
+class Walker:
+    """Walks one lab's lessons in one browser tab and records what goes wrong."""
+
+    ui: LabPage
+    artifacts: Path
+    say: Callable[[str], None] = _say
+    opened: list[str] = field(default_factory=list)
+    defects: list[str] = field(default_factory=list)
+    steps: int = 0
+    _at: str = "start"  # the step running, to name where a defect was found
+
+    # --- the steps ------------------------------------------------------------------------------
+    def open(self, name: str) -> None:
+        """Open lesson `name` from the file browser, Run All, check the whole run."""
+        self.ui.open(name)
+        self.opened.append(name)
+        self.ui.run_all()
+        number = lesson_number(name)
+        if number in PROBES:  # added once, then part of every later Run All
+            self.ui.add_cell(PROBES[number][0])
+        self._check_run(name)
+
+    def run_all(self, name: str) -> None:
+        """Bring an open lesson to the front and Run All again."""
+        self.ui.show(name)
+        self.ui.run_all()
+        self._check_run(name)
+
+    def restart(self, name: str) -> None:
+        """Kernel > Restart Kernel and Run All Cells… in an open lesson."""
+        self.ui.show(name)
+        self.ui.restart_and_run_all()
+        self._check_run(name)
+
+    def first_then_all(self, name: str) -> None:
+        """Run an open lesson's first cell again (`lesson = start(N)`), then Run All."""
+        self.ui.show(name)
+        first = self.ui.run_cell(self.ui.cell_with("lesson = start("))
+        self._record(cell_problems(name, first))
+        self.ui.run_all()
+        self._check_run(name)
+
+    def rerun_cell(self, name: str, source: str) -> None:
+        """Run one cell of an open lesson again; it must show no error."""
+        self.ui.show(name)
+        cell = self.ui.run_cell(self.ui.cell_with(source))
+        self._record(cell_problems(name, cell))
+
+    def check_graph(self) -> None:
+        """Check the lab's graph from a lab terminal: one /mujoco and one /clock publisher once
+        a lesson started the world, none before."""
+        world = any(lesson_number(name) in WORLD_LESSONS for name in self.opened)
+        terminal = Terminal(self.ui.page, self.ui.lab.base_url, self.ui.lab.token)
+        try:
+            self._record(graph_problems(terminal, worlds=int(world)))
+        finally:
+            terminal.close()
+
+    # --- running steps and recording defects -----------------------------------------------------
+    def do(self, step: Step) -> None:
+        """Do one step and record, instead of raising, whatever failed in it."""
+        if step.kind == "check_graph":  # the end of a walk, not one of its steps
+            self._at = "end of the walk"
+        else:
+            self.steps += 1
+            self._at = f"step {self.steps}"
+        self.log(f"walk {self._at}: {step}")
+        started = time.monotonic()
+        try:
+            left = self.ui.dismiss_dialogs()  # what an earlier step left open
+            self._record([f"a dialog was left open: {text}" for text in left])
+            if step.kind == "rerun_cell":
+                self.rerun_cell(step.lesson, step.detail)
+            elif step.kind == "check_graph":
+                self.check_graph()
+            else:
+                getattr(self, step.kind)(step.lesson)
+        except AssertionError as exc:
+            self._record([f"{exc}"])
+        except Exception as exc:  # a Playwright timeout or a closed page: a defect too
+            self._record([f"{type(exc).__name__}: {exc}"])
+        self.log(f"  ({time.monotonic() - started:.0f} s)")
+
+    def _check_run(self, name: str) -> None:
+        self._record(run_problems(name, self.ui.cells()))
+
+    def _record(self, problems: list[str]) -> None:
+        for problem in problems:
+            self.defects.append(f"{self._at}: {problem}")
+            self.log(f"  DEFECT {len(self.defects)}: {problem}")
+        shot = self.artifacts / f"{self._at.replace(' ', '_')}_defect.png"
+        if problems and not shot.exists():
+            self.ui.screenshot(shot)
+
+    def log(self, line: str) -> None:
+        """Say `line` and keep it in the test's walk.log (a soak's record)."""
+        self.say(line)
+        with open(self.artifacts / "walk.log", "a", encoding="utf-8") as file:
+            file.write(line + "\n")
+
+    def summary(self, seed: int | None = None) -> list[str]:
+        """Return the walk's summary, one line each: steps, defects, seed."""
+        lines = [f"steps walked: {self.steps}", f"defects found: {len(self.defects)}"]
+        return [*lines, f"seed: {seed}"] if seed is not None else lines
+
+    def report(self, seed: int | None = None) -> str:
+        """Return the summary and every defect, for a failure message."""
+        return "\n".join([*self.summary(seed), *self.defects])
+
+    # --- a random walk --------------------------------------------------------------------------
+    def choose(self, rng: random.Random) -> Step:
+        """Choose the next step: open a lesson not open yet (some chance while one is left), or
+        do something to an open one."""
+        closed = [name for name in LESSONS if name not in self.opened]
+        if not self.opened or (closed and rng.random() < OPEN_CHANCE):
+            return Step("open", rng.choice(closed))
+        name = rng.choice(self.opened)
+        kind = rng.choice(["run_all", "restart", "first_then_all", "rerun_cell", "rerun_cell"])
+        if kind != "rerun_cell":
+            return Step(kind, name)
+        sources = [source for source in RERUNNABLE if source in _sources(name)]
+        return Step(kind, name, rng.choice(sources))
+
+    def can_go_on(self) -> bool:
+        """Return False, recording why, once the lab or the browser tab is gone."""
+        if self.ui.lab.process.alive and not self.ui.page.is_closed():
+            return True
+        self._record([f"the lab or its browser tab stopped: the walk ends\n{self.ui.lab.text()}"])
+        return False
+
+    def random_walk(self, seed: int, steps: int) -> None:
+        """Walk `steps` random steps from `seed`, then check the graph from a terminal."""
+        self.log(f"walk seed: {seed} (replay: WALK_SEED={seed} WALK_STEPS={steps})")
+        rng = random.Random(seed)
+        for _ in range(steps):
+            if not self.can_go_on():
+                return
+            self.do(self.choose(rng))
+        self.do(Step("check_graph", "the lab"))
+
+
+def _sources(name: str) -> str:
+    """Return the code of lesson `name` as stored in notebooks/ (to know what cells it has)."""
+    import nbformat
+
+    from course_lib.paths import NOTEBOOKS_DIR
+
+    notebook = nbformat.read(NOTEBOOKS_DIR / name, as_version=4)
+    return "\n".join(cell.source for cell in notebook.cells if cell.cell_type == "code")
