@@ -86,9 +86,28 @@ class Lesson:
         print(f"Put {whose} back at its start pose, standing still.")
         return world
 
+    def _running_lab_world(self) -> Any:
+        """Return the lab's world if it runs (attached as it is, robot left where it is)."""
+        from ..machine import machine_client
+        from ..sim import start_world
+
+        client = machine_client()
+        if client is None:
+            return None
+        status = client.request("world.status", timeout=5.0)
+        if not status.get("running"):
+            return None
+        return start_world(self.session, show=False, config=status.get("config"))
+
     @property
     def current_world(self) -> Any:
-        """Return the running world; raise a CourseError that says how to start it."""
+        """Return the running world; raise a CourseError that says how to start it.
+
+        In a lab whose world runs, a kernel that has not asked for it yet (its first cell was
+        run again, or the kernel restarted) gets the lab's world: every number comes from it.
+        """
+        if self._world is None or not self._world.alive:
+            self._world = self._running_lab_world()
         if self._world is None or not self._world.alive:
             raise CourseError(
                 "The simulation is not running in this lesson.",

@@ -26,6 +26,7 @@ CMD_VEL = "/cmd_vel"
 _EPROSIMA = (0x01, 0x0F)
 _SEEN_WAIT_S = 1.0  # at most, until the new node's endpoints are discovered
 _POLL_S = 0.02
+_DAEMON = "course_lib.ros2.daemon"
 
 
 def pid_bits(gid: Sequence[int]) -> int | None:
@@ -62,8 +63,11 @@ def _full_name(namespace: str, name: str) -> str:
 
 
 def _mine(pid: int) -> bool:
+    """Return True for this user's process, unless it is the course's `ros2` daemon (whose
+    node publishes for a terminal's `ros2 topic pub`: Ctrl-C there stops it, not a kill)."""
     try:
-        return psutil.Process(pid).uids().real == os.getuid()
+        process = psutil.Process(pid)
+        return process.uids().real == os.getuid() and _DAEMON not in process.cmdline()
     except psutil.Error:
         return False
 

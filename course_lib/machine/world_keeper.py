@@ -78,7 +78,13 @@ class WorldKeeper:
             if sim is None:
                 return {"running": False, "returncode": None, "tail": []}
             tail = [line.text for line in sim.lines[-_TAIL_LINES:]]
-            return {"running": sim.alive, "returncode": sim.returncode, "tail": tail}
+            running = sim.alive and sim is self._sim
+            return {
+                "running": running,
+                "config": self._config if running else None,
+                "returncode": sim.returncode,
+                "tail": tail,
+            }
 
     def stop(self) -> None:
         """Stop the world and its view (a learner's `world.stop()`, the lab ending); idempotent."""

@@ -79,6 +79,11 @@ def test_every_world_call_in_a_lab_is_the_labs_one_world(lab_kernel) -> None:
     assert "real_time_factor" not in other.ok("world = start_world(real_time_factor=2)").text
     other.ok("world = start_world(show=False, real_time_factor=1.0)")
     assert _count(three, "node list", "/mujoco") == 1
+    # a kernel that only ran its first cell (restarted, say) reads the lab's running world
+    fresh = lab_kernel()
+    where = fresh.ok(START.format(7) + "\nlesson.where()").text
+    assert "Robot at x" in where, where
+    assert _sim_pid(three) == int(fresh.ok("print(lesson.current_world.process.pid)").text)
     info = three.ok("%ros2 topic info /clock").text
     assert "Publisher count: 1\n" in info, info
 
