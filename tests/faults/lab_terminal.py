@@ -36,6 +36,10 @@ async def _connect(url: str) -> Any:
     return await websocket_connect(url)
 
 
+async def _write(ws: Any, message: str) -> None:
+    await ws.write_message(message)
+
+
 async def _read(ws: Any, timeout: float) -> str | None:
     return await asyncio.wait_for(ws.read_message(), timeout)
 
@@ -55,7 +59,7 @@ class RestTerminal:
     def run(self, command: str, expect: str, timeout: float = 60.0) -> re.Match[str]:
         """Type `command`; wait until its output matches regex `expect` (not in its echo)."""
         start = len(self.output)
-        self._ws.write_message(json.dumps(["stdin", command + "\r"]))
+        self._type(command + "\r")
         deadline = time.monotonic() + timeout
         while True:
             typed = self.output[start:].find("\n")  # skip the echoed command line
@@ -70,6 +74,11 @@ class RestTerminal:
                 )
             self._receive(remaining)
 
+    def _type(self, text: str) -> None:
+        """Send keys on this terminal's own loop (never the thread's current one, which an
+        earlier `asyncio.run` in the same test process may have closed)."""
+        self._loop.run_until_complete(_write(self._ws, json.dumps(["stdin", text])))
+
     def _receive(self, timeout: float) -> None:
         try:
             message = self._loop.run_until_complete(_read(self._ws, timeout))
@@ -83,7 +92,7 @@ class RestTerminal:
 
     def interrupt(self) -> None:
         """Press Ctrl-C, then wait until the shell answers again."""
-        self._ws.write_message(json.dumps(["stdin", "\x03"]))
+        self._type("\x03")
         self.run("echo back-$((20 + 22))", r"back-42")
 
     def close(self) -> None:
