@@ -3,6 +3,7 @@
 from geometry_msgs.msg import Twist
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.task import Future
 from turtlesim.action import RotateAbsolute
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import SetPen, TeleportAbsolute, TeleportRelative
@@ -23,6 +24,7 @@ class TurtleInterfaces:
         self.pen, self.pen_width, self.pen_on = DEFAULT_PEN, DEFAULT_PEN_WIDTH, True
         self.teleports = []
         self.rotation = None  # (goal handle, start heading, finished future)
+        self.rotation_results = {}  # goal id -> the future its execute callback awaits
         self.last_command = node.get_clock().now()
         self.subscription = node.create_subscription(
             Twist, f'{name}/cmd_vel', self.on_command, TOPIC_QOS)
@@ -82,12 +84,14 @@ class TurtleInterfaces:
             self.node.get_logger().warn(
                 'Rotation goal received before a previous goal finished. Aborting previous goal')
             self.abort_rotation()
-        self.rotation = (goal_handle, self.turtle.theta, self.node.executor.create_future())
+        done = Future()
+        self.rotation_results[bytes(goal_handle.goal_id.uuid)] = done
+        self.rotation = (goal_handle, self.turtle.theta, done)
         goal_handle.execute()
 
     async def execute_rotation(self, goal_handle):
         """Wait for the update loop to finish the goal; return its result."""
-        return await self.rotation[2]
+        return await self.rotation_results.pop(bytes(goal_handle.goal_id.uuid))
 
     def abort_rotation(self):
         """End the current rotation goal as aborted (a velocity command, a newer goal)."""

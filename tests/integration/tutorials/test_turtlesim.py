@@ -1,8 +1,9 @@
 """The course's turtlesim as the Jazzy docs' beginner tutorials use it, typed in lab terminals.
 
 Its interfaces print what Jazzy prints, /turtle1/cmd_vel moves the turtle on /turtle1/pose as
-real turtlesim's kinematics do, the services work, and the window's SVG (what the browser
-page draws) shows the background parameters and the pen line.
+real turtlesim's kinematics do, the services and teleop's rotation keys (the rotate_absolute
+action) work, and the window's SVG (what the browser page draws) shows the background
+parameters, the turtles and the pen line.
 """
 
 from __future__ import annotations
@@ -114,6 +115,18 @@ def test_turtlesim_interfaces_motion_services_and_window(terminals) -> None:
     )
     pose = _until_still(cli)
     assert (round(pose["x"], 3), round(pose["y"], 3), round(pose["theta"], 3)) == (1.0, 1.0, 0.5)
+
+    # teleop's R key: the rotate_absolute action turns turtle1 to pi/2 at 1 rad/s
+    teleop = terminals()
+    teleop.wait_for(r"'Q' to quit\.", teleop.start("ros2 run turtlesim turtle_teleop_key"))
+    deadline = time.monotonic() + 20
+    while "Rotation goal completed" not in sim.output[start:]:
+        assert time.monotonic() < deadline, "no rotation from teleop's R key"
+        teleop.send("r")  # again until the action client has found the server
+        sim._read(0.5)
+    assert abs(_until_still(cli)["theta"] - 1.5708) < 0.02
+    teleop.send("q")
+    assert teleop.type("true")[1] == 0
 
     assert cli.type("ros2 service call /clear std_srvs/srv/Empty")[1] == 0
     sim.wait_for(r"\[turtlesim\]: Clearing turtlesim\.", start)
