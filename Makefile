@@ -5,9 +5,10 @@ PY := $(VENV)/bin/python
 STAMP_ENV := $(VENV)/.installed
 STAMP_WS := rosject/install/.built
 # colcon --symlink-install links every source and installed file, so editing one needs no
-# rebuild: only the build description does, and a launch/ or config/ folder whose files were
-# added or removed (setup.py installs them by glob).
-ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
+# rebuild: only the build description does (CMake packages: their interface files and
+# templates too), and a launch/ or config/ folder whose files were added or removed (setup.py
+# installs them by glob).
+ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -name CMakeLists.txt -o -name '*.in' -o -name '*.msg' -o -name '*.srv' -o -name '*.action' -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
 
 .PHONY: lab setup hub test test-fast soak bench notebooks lint format clean doctor stop smoke-python
 

@@ -84,3 +84,19 @@ def with_course_interfaces(packages_stdout: str) -> str:
     }
     lines = sorted(set(packages_stdout.splitlines()) | built)
     return "".join(f"{line}\n" for line in lines)
+
+
+def with_course_services(list_stdout: str) -> str:
+    """Add the services the course builds (turtlesim's) to `ros2 interface list -s`'s golden.
+
+    Taken on the wheels alone, like `with_course_interfaces`; the real tool lists every
+    installed service in one sorted list under "Services:".
+    """
+    from .paths import WORKSPACE_INSTALL_DIR
+
+    header, *entries = list_stdout.splitlines()
+    built = {
+        f"    {path.parent.parent.name}/srv/{path.stem}"
+        for path in (WORKSPACE_INSTALL_DIR / "share").glob("*/srv/*.srv")
+    }
+    return "".join(f"{line}\n" for line in [header, *sorted(set(entries) | built)])

@@ -92,7 +92,9 @@ class LearnerShell:
         """End the shell and whatever it still runs (the processes of its session)."""
         members = [p for p in psutil.process_iter() if _session_of(p.pid) == self.proc.pid]
         for process in members:
-            process.send_signal(signal.SIGINT)
+            # an interactive bash ignores SIGINT: it ends on SIGHUP, as when a terminal closes
+            hang_up = process.pid == self.proc.pid
+            process.send_signal(signal.SIGHUP if hang_up else signal.SIGINT)
         _, alive = psutil.wait_procs(members, timeout=5)
         for process in alive:
             process.kill()

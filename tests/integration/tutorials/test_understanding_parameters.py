@@ -8,7 +8,9 @@ real Jazzy adds (turtlesim 1.8's `holonomic`, rclpy's and rclcpp's
 
 from __future__ import annotations
 
+import re
 import time
+import urllib.request
 
 # Real Jazzy's `ros2 param list` of the two nodes: the docs' list (written for Humble) plus
 # turtlesim 1.8's holonomic and Jazzy's start_type_description_service.
@@ -62,7 +64,15 @@ READ_ONLY = [
     f"qos_overrides./parameter_events.publisher.{p}"
     for p in ("depth", "durability", "history", "reliability")
 ]
+WINDOW = r"TurtleSim window \(the course's, in your browser\): (http://127\.0\.0\.1:\d+/)\n"
 SPAWNED = r"\[turtlesim\]: Spawning turtle \[turtle1\] at x=\[5\.544445\], y=\[5\.544445\]"
+
+
+def _background(window: str) -> str:
+    """Return the background colour the window's page draws now (its SVG)."""
+    with urllib.request.urlopen(window + "view.svg", timeout=5) as reply:
+        svg = reply.read().decode()
+    return re.search(r'<rect id="background"[^>]* fill="([^"]+)"', svg).group(1)  # type: ignore[union-attr]
 
 
 def test_understanding_parameters_runs_as_written(terminals) -> None:
@@ -73,11 +83,11 @@ def test_understanding_parameters_runs_as_written(terminals) -> None:
         " source.\n",
         0,
     )
-    sim.wait_for(
-        r"Starting turtlesim with node name /turtlesim",
-        sim.start("ros2 run turtlesim turtlesim_node"),
-    )
+    started = sim.start("ros2 run turtlesim turtlesim_node")
+    window = sim.wait_for(WINDOW, started).group(1)  # what the learner opens in the browser
+    sim.wait_for(r"Starting turtlesim with node name /turtlesim", started)
     sim.wait_for(SPAWNED)
+    assert _background(window) == "rgb(69,86,255)"
     teleop.wait_for(r"'Q' to quit\.", teleop.start("ros2 run turtlesim turtle_teleop_key"))
 
     assert cli.type("ros2 param list") == (PARAM_LIST, 0)
@@ -90,6 +100,8 @@ def test_understanding_parameters_runs_as_written(terminals) -> None:
         "Set parameter successful\n",
         0,
     )
+    # The docs: "the background of the turtlesim window changes color" (the view's next draw).
+    assert _background(window) == "rgb(150,86,255)"
     assert cli.type("ros2 param dump /turtlesim > turtlesim.yaml") == ("", 0)
     assert cli.type("cat turtlesim.yaml") == (DUMP, 0)
     loaded, code = cli.type("ros2 param load /turtlesim turtlesim.yaml")
@@ -111,11 +123,12 @@ def test_understanding_parameters_runs_as_written(terminals) -> None:
 
     # restart turtlesim with the saved parameters
     assert sim.interrupt()[1] == 0
-    sim.wait_for(
-        SPAWNED,
-        sim.start("ros2 run turtlesim turtlesim_node --ros-args --params-file turtlesim.yaml"),
+    restarted = sim.start(
+        "ros2 run turtlesim turtlesim_node --ros-args --params-file turtlesim.yaml"
     )
+    sim.wait_for(SPAWNED, restarted)
     assert cli.type("ros2 param get /turtlesim background_r") == ("Integer value is: 150\n", 0)
+    assert _background(sim.wait_for(WINDOW, restarted).group(1)) == "rgb(150,86,255)"
     teleop.send("q")
     assert teleop.type("true")[1] == 0
     assert sim.interrupt()[1] == 0

@@ -95,6 +95,7 @@ def test_tutorial_node_matches_the_tutorial() -> None:
 def test_every_package_is_python_or_interfaces() -> None:
     assert sorted(PACKAGES + INTERFACE_PACKAGES) == ALL_PACKAGES
     assert ROSJECT_DIR / "tf2_msgs" in INTERFACE_PACKAGES
+    assert ROSJECT_DIR / "turtlesim" in INTERFACE_PACKAGES  # its interfaces and rclpy nodes
 
 
 @pytest.mark.parametrize("package", INTERFACE_PACKAGES, ids=lambda p: p.name)
@@ -104,8 +105,9 @@ def test_interface_package_generates_every_message(package: Path) -> None:
     assert root.findtext("member_of_group") == "rosidl_interface_packages"
     cmake = (package / "CMakeLists.txt").read_text()
     assert f"project({package.name})" in cmake and "rosidl_generate_interfaces(" in cmake
-    for message in sorted((package / "msg").glob("*.msg")):
-        assert f'"msg/{message.name}"' in cmake, f"{message.name} is not generated"
+    for folder in ("msg", "srv", "action"):
+        for interface in sorted((package / folder).glob(f"*.{folder}")):
+            assert f'"{folder}/{interface.name}"' in cmake, f"{interface.name} is not generated"
 
 
 def test_tf2_msgs_has_jazzys_tf_message() -> None:

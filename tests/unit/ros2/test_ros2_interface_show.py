@@ -10,7 +10,7 @@ import pytest
 
 from course_lib.ros2.commands import run_collected
 from course_lib.ros2.interface_text import show_lines
-from course_lib.testing import with_course_interfaces
+from course_lib.testing import with_course_interfaces, with_course_services
 
 GOLDEN = Path(__file__).resolve().parents[2] / "golden" / "ros2" / "cases_part2.json"
 CASES = {c["case"]: c for c in json.loads(GOLDEN.read_text())}
@@ -31,6 +31,8 @@ def test_interface_case_matches(name: str) -> None:
         stdout, expected = sorted(stdout.splitlines()), sorted(case["stdout"].splitlines())
     elif case["command"] == "ros2 interface packages":
         expected = with_course_interfaces(case["stdout"])
+    elif case["command"] == "ros2 interface list -s":
+        expected = with_course_services(case["stdout"])
     else:
         expected = case["stdout"]
     assert (stdout, stderr, code) == (expected, case["stderr"], case["exit"])

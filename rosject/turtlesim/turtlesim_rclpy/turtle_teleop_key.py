@@ -8,13 +8,19 @@ import tty
 
 from geometry_msgs.msg import Twist
 import rclpy
+from rclpy.action import ActionClient
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
+from turtlesim.action import RotateAbsolute
 
 from .rclcpp_like import declare_parameter_events_qos
 
 ARROWS = {'A': (1.0, 0.0), 'B': (-1.0, 0.0), 'C': (0.0, -1.0), 'D': (0.0, 1.0)}
-ROTATIONS = set('gbvcdertf')
+# The absolute headings (rad) of the rotation keys, as the real teleop sends them.
+ROTATIONS = {
+    'g': 0.0, 't': 0.7854, 'r': 1.5708, 'e': 2.3562,
+    'd': 3.1416, 'c': -2.3562, 'v': -1.5708, 'b': -0.7854,
+}
 INSTRUCTIONS = (
     'Reading from keyboard\n'
     '---------------------------\n'
@@ -33,17 +39,18 @@ class TeleopTurtle(Node):
         self.declare_parameter('scale_linear', 2.0)
         declare_parameter_events_qos(self)
         self.publisher = self.create_publisher(Twist, 'turtle1/cmd_vel', 1)
-        self.warned_rotation = False
+        self.rotate_absolute = ActionClient(self, RotateAbsolute, 'turtle1/rotate_absolute')
+        self.goal_handle = None
 
     def on_key(self, key):
         """Act on one key (the last byte of an arrow's escape sequence); False to quit."""
         if key in ('q', 'Q'):
             return False
-        if key.lower() in ROTATIONS and not self.warned_rotation:
-            self.warned_rotation = True
-            self.get_logger().warn(
-                'Rotating to an absolute orientation needs turtlesim\'s rotate_absolute action, '
-                'which the course\'s turtlesim lacks: use the arrow keys.')
+        if key.lower() in ROTATIONS:
+            goal = RotateAbsolute.Goal(theta=ROTATIONS[key.lower()])
+            self.rotate_absolute.send_goal_async(goal).add_done_callback(self.on_goal_response)
+        elif key.lower() == 'f' and self.goal_handle is not None:
+            self.goal_handle.cancel_goal_async()
         if key in ARROWS:
             linear, angular = ARROWS[key]
             msg = Twist()
@@ -51,6 +58,10 @@ class TeleopTurtle(Node):
             msg.angular.z = self.get_parameter('scale_angular').value * angular
             self.publisher.publish(msg)
         return True
+
+
+    def on_goal_response(self, future):
+        self.goal_handle = future.result()
 
 
 def _key_loop(node, fd):
