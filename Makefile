@@ -9,9 +9,9 @@ STAMP_WS := rosject/install/.built
 # added or removed (setup.py installs them by glob).
 ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
 
-.PHONY: lab setup hub test test-fast bench notebooks lint format clean doctor stop smoke-python
+.PHONY: lab setup hub test test-fast bench notebooks check-config lint format clean doctor stop smoke-python
 
-lab: setup  ## Start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
+lab: setup  ## Check config/, then start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
 	$(PY) -m course_lib lab $(EXTRA)
 
 setup: $(STAMP_ENV) $(STAMP_WS)  ## Build the environment and the ROS workspace
@@ -28,8 +28,11 @@ test-fast: setup  ## Unit tests only (no ROS, milliseconds)
 bench: setup  ## Print the course's speed and memory figures
 	$(PY) -m bench
 
-notebooks: setup  ## Re-execute every notebook to refresh its stored outputs
-	$(PY) -m course_lib notebooks
+notebooks: setup  ## Check config/, render the lessons from it, re-execute them (ARGS="--all", "--config DIR", names; ARGS=--help)
+	$(PY) -m course_lib notebooks $(ARGS)
+
+check-config: setup  ## Check every file of config/, alone and together (ARGS="--config DIR")
+	$(PY) -m course_lib check-config $(ARGS)
 
 smoke-python:  ## Prove CPython 3.12 as well: fresh venv, environment.txt, rclpy + MuJoCo smoke
 	scripts/smoke_python.sh $(SMOKE_PYTHON)

@@ -16,7 +16,8 @@ from .config.simulation import SimulationSettings
 from .config.together import check_files_together
 from .errors import ConfigError, CourseError
 from .hub.settings import HubSettings
-from .paths import config_dir
+from .lessons.texts import stale_notebooks
+from .paths import config_dir, learner_notebooks_dir
 
 __all__ = ["SCHEMAS", "ConfigReport", "check_config", "require_valid_config"]
 
@@ -34,6 +35,7 @@ class ConfigReport:
     folder: Path
     problems: list[ConfigError] = field(default_factory=list)
     settings: dict[str, Any] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
 
     @property
     def ok(self) -> bool:
@@ -44,7 +46,8 @@ class ConfigReport:
         """Return the report as the instructor reads it."""
         where = display_path(self.folder)
         if self.ok:
-            return f"{where}/: {', '.join(SCHEMAS)} are valid, alone and together."
+            lines = [f"{where}/: {', '.join(SCHEMAS)} are valid, alone and together."]
+            return "\n".join(lines + [f"Note: {note}" for note in self.notes])
         lines = [f"{where}/: {len(self.problems)} problem(s); nothing was started."]
         for problem in self.problems:
             lines += [f"  {problem.message}", f"    Try: {problem.hint}"]
@@ -64,12 +67,16 @@ def check_config(folder: Path | None = None) -> ConfigReport:
     if course is not None and sim is not None:
         paths = {name: folder / name for name in SCHEMAS}
         report.problems += check_files_together(course, sim, paths)
+    if course is not None and report.ok:
+        report.notes = stale_notebooks(learner_notebooks_dir(), course)
     return report
 
 
-def require_valid_config() -> dict[str, Any]:
+def require_valid_config(*, show_notes: bool = True) -> dict[str, Any]:
     """Check the config folder; raise a CourseError listing every problem when it is broken."""
     report = check_config()
     if not report.ok:
         raise CourseError(report.render(), hint="fix those lines, then `make check-config`.")
+    for note in report.notes if show_notes else []:
+        print(f"Note: {note}")
     return report.settings
