@@ -146,7 +146,7 @@ def refresh_notebooks(extra: list[str]) -> int:
     options = _options(extra)
     if options.config is not None:
         os.environ[CONFIG_DIR_ENV] = str(options.config.resolve())  # the kernels read it too
-    settings = require_valid_config(show_notes=False)["course.yaml"]  # a broken config/: nothing runs
+    settings = require_valid_config(show_notes=False)["course.yaml"]  # broken: nothing runs
     names = options.names
     paths = [Path(n) if os.sep in n else NOTEBOOKS_DIR / n for n in names] or sorted(
         NOTEBOOKS_DIR.glob("[0-9][0-9]_*.ipynb")
