@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from .config.commented import commented_yaml, settings_rows
 from .config.course import CourseSettings
 from .config.loader import check_file, display_path
 from .config.simulation import SimulationSettings
@@ -19,13 +20,62 @@ from .hub.settings import HubSettings
 from .lessons.texts import stale_notebooks
 from .paths import config_dir, learner_notebooks_dir
 
-__all__ = ["SCHEMAS", "ConfigReport", "check_config", "require_valid_config"]
+__all__ = [
+    "HEADERS",
+    "SCHEMAS",
+    "ConfigReport",
+    "check_config",
+    "readme_rows",
+    "require_valid_config",
+    "write_comments",
+]
 
 SCHEMAS: dict[str, type] = {
     "course.yaml": CourseSettings,
     "simulation.yaml": SimulationSettings,
     "hub.yaml": HubSettings,
 }
+
+
+# The files whose comments are written from their schema (config/hub.yaml keeps its own).
+HEADERS = {
+    "course.yaml": """
+Instructor settings for the lessons (course_lib.config.course). `make check-config` checks
+this file; the first cell of every lesson too, naming the line of any mistake. After a change,
+`make notebooks` renders the lessons' texts, commands and stored outputs from it.
+Delete a key to get its default. The comments below are written from the schema:
+`make check-config ARGS=--write-comments` rewrites them and keeps your values.
+""",
+    "simulation.yaml": """
+The simulated TurtleBot3 world (course_lib.config.simulation). `make check-config` checks it,
+alone and with course.yaml (the start pose clear of the obstacles, room for the lessons'
+drives); the world checks it when it starts. Restart the world (World.stop(), then
+lesson.world()) to apply a change. Delete a key to get its default. The comments below are
+written from the schema: `make check-config ARGS=--write-comments` rewrites them.
+""",
+}
+
+
+def write_comments(folder: Path | None = None) -> list[Path]:
+    """Rewrite the comments of the files in HEADERS from their schema; return those changed."""
+    folder = folder or config_dir()
+    report = check_config(folder)
+    if not report.ok:
+        raise CourseError(report.render(), hint="fix those lines first: values are kept.")
+    changed = []
+    for name, header in HEADERS.items():
+        path = folder / name
+        text = commented_yaml(report.settings[name], header)
+        if path.read_text(encoding="utf-8") != text:
+            path.write_text(text, encoding="utf-8")
+            changed.append(path)
+    return changed
+
+
+def readme_rows() -> list[str]:
+    """Return the README's table of settings: one row per key of every file in SCHEMAS."""
+    head = ["| File | Key | Meaning | Allowed | Default |", "| --- | --- | --- | --- | --- |"]
+    return head + [row for name, schema in SCHEMAS.items() for row in settings_rows(name, schema)]
 
 
 @dataclass

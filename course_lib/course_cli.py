@@ -63,8 +63,19 @@ def _check_config(args: argparse.Namespace) -> int:
         description="Check every file of config/ alone and together; exit 1 on any problem.",
     )
     parser.add_argument("--config", type=Path, help="another folder of instructor YAML")
+    parser.add_argument(
+        "--write-comments",
+        action="store_true",
+        help="rewrite the files' comments from the schema, keeping their values",
+    )
     options = parser.parse_args(args.extra)
-    report = check_config(options.config.resolve() if options.config else None)
+    folder = options.config.resolve() if options.config else None
+    if options.write_comments:
+        from .config_check import write_comments
+
+        for path in write_comments(folder):
+            print(f"rewrote the comments of {path.name}")
+    report = check_config(folder)
     print(report.render(), file=sys.stdout if report.ok else sys.stderr)
     return 0 if report.ok else 1
 

@@ -25,7 +25,8 @@ class TravelExercise:
     )
     tolerance_m: float = setting(
         0.05,
-        help="how far from the target still passes (m); the robot stops to about 1 cm",
+        help="how far from the target still passes (m), at most a quarter of target_m; "
+        "the robot stops to about 1 cm",
         ge=0.02,
         le=0.3,
     )

@@ -15,23 +15,34 @@ pytestmark = [pytest.mark.ros]
 
 FIRST_CELL = "from course_lib.lessons import start\n\nlesson = start(7)"
 
+
+def _line(name: str, needle: str) -> int:
+    text = (CONFIG_DIR / name).read_text().splitlines()
+    return next(n for n, line in enumerate(text, 1) if line.startswith(needle))
+
+
+VELOCITY = _line("course.yaml", "default_velocity_mps:")
+START = _line("simulation.yaml", "start_pose:")
+
 CASES = {
     # name: (file, edit of the shipped text, what the first line must say)
     "missing_colon": (
         "course.yaml",
         lambda t: t.replace("default_velocity_mps: 0.2", "default_velocity_mps 0.2"),
-        "course.yaml, line 7: (syntax): not valid YAML: `default_velocity_mps 0.2` has no colon",
+        f"course.yaml, line {VELOCITY}: (syntax): not valid YAML: `default_velocity_mps 0.2` "
+        "has no colon",
     ),
     "empty": ("course.yaml", lambda t: "", "course.yaml: (file): holds no settings"),
     "out_of_range": (
         "course.yaml",
         lambda t: t.replace("default_velocity_mps: 0.2", "default_velocity_mps: 0.5"),
-        "course.yaml, line 7: default_velocity_mps: 0.5 is out of range (allowed: >= 0.05",
+        f"course.yaml, line {VELOCITY}: default_velocity_mps: 0.5 is out of range "
+        "(allowed: >= 0.05",
     ),
     "start_in_a_wall": (
         "simulation.yaml",
         lambda t: t.replace("  y_m: 0.0", "  y_m: -1.5"),
-        "simulation.yaml, line 12: start_pose: the robot at (0, -1.5) facing 0° overlaps "
+        f"simulation.yaml, line {START}: start_pose: the robot at (0, -1.5) facing 0° overlaps "
         "obstacle_wall",
     ),
 }

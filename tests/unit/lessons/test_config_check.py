@@ -11,10 +11,11 @@ from pathlib import Path
 
 import pytest
 
+from course_lib.config.commented import commented_yaml
 from course_lib.config.course import CourseSettings, TravelExercise
 from course_lib.config.simulation import SimulationSettings, StartPose
 from course_lib.config.trip import MAX_TRAVEL_M, answer_trip, wrong_trip
-from course_lib.config_check import check_config
+from course_lib.config_check import HEADERS, check_config, readme_rows
 from course_lib.lessons.texts import TEMPLATES, render_cells, settings_used
 from course_lib.paths import CONFIG_DIR, NOTEBOOKS_DIR, REPO_ROOT
 
@@ -40,7 +41,7 @@ def test_the_shipped_config_is_valid_alone_and_together() -> None:
             "course.yaml",
             "default_velocity_mps: 0.2",
             "default_velocity_mps 0.2",
-            "line 7: (syntax)",
+            "has no colon after its key",
         ),
         (
             "course.yaml",
@@ -134,3 +135,19 @@ def test_start_pose_turned_to_free_floor_is_accepted() -> None:
     from course_lib.config.together import free_distance_m
 
     assert free_distance_m(SimulationSettings(start_pose=StartPose(1.0, 0.5, 90.0))) > 1.3
+
+
+def test_the_shipped_comments_are_what_the_schema_writes() -> None:
+    report = check_config(CONFIG_DIR)
+    for name, header in HEADERS.items():
+        written = commented_yaml(report.settings[name], header)
+        shipped = (CONFIG_DIR / name).read_text()
+        assert shipped == written, f"{name}: run `make check-config ARGS=--write-comments`"
+
+
+def test_the_readme_table_lists_every_setting_with_its_range() -> None:
+    readme = (REPO_ROOT / "README.md").read_text()
+    missing = [row for row in readme_rows() if row not in readme]
+    assert not missing, "README.md lacks these rows (from course_lib.config_check):\n" + "\n".join(
+        missing
+    )
