@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -17,7 +18,7 @@ from course_lib.config.simulation import SimulationSettings, StartPose
 from course_lib.config.trip import MAX_TRAVEL_M, answer_trip, wrong_trip
 from course_lib.config_check import HEADERS, check_config, readme_rows
 from course_lib.lessons.texts import TEMPLATES, render_cells, settings_used
-from course_lib.paths import CONFIG_DIR, NOTEBOOKS_DIR, REPO_ROOT
+from course_lib.paths import CONFIG_DIR, CONFIG_DIR_ENV, NOTEBOOKS_DIR, REPO_ROOT
 
 
 def _config(tmp_path: Path, name: str, old: str, new: str) -> Path:
@@ -151,3 +152,24 @@ def test_the_readme_table_lists_every_setting_with_its_range() -> None:
     assert not missing, "README.md lacks these rows (from course_lib.config_check):\n" + "\n".join(
         missing
     )
+
+
+@pytest.mark.parametrize("command", ["lab", "notebooks", "doctor"])
+def test_a_broken_config_stops_the_command_before_anything_starts(
+    tmp_path: Path, command: str
+) -> None:
+    folder = _config(
+        tmp_path, "course.yaml", "default_velocity_mps: 0.2", "default_velocity_mps 0.2"
+    )
+    done = subprocess.run(
+        [sys.executable, "-m", "course_lib", command],
+        cwd=REPO_ROOT,
+        env={**os.environ, CONFIG_DIR_ENV: str(folder)},
+        capture_output=True,
+        text=True,
+        timeout=30,
+        check=False,
+    )
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert "has no colon after its key" in done.stdout + done.stderr
+    assert "Traceback" not in done.stderr and "ROS_DOMAIN_ID=" not in done.stdout
