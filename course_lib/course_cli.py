@@ -116,7 +116,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m course_lib")
     sub = parser.add_subparsers(dest="command", required=True)
     for name, (func, summary) in COMMANDS.items():
-        sub.add_parser(name, help=summary).set_defaults(func=func)
+        # add_help=False: `-h` reaches the command itself (its own options, or jupyter lab's)
+        sub.add_parser(name, help=summary, add_help=False).set_defaults(func=func)
     args, extra = parser.parse_known_args(argv)
     args.extra = extra  # passed through to jupyter lab or pytest
     from .errors import CourseError
