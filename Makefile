@@ -10,9 +10,9 @@ STAMP_WS := rosject/install/.built
 # installs them by glob).
 ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -name CMakeLists.txt -o -name '*.in' -o -name '*.msg' -o -name '*.srv' -o -name '*.action' -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
 
-.PHONY: lab setup hub test test-fast soak bench notebooks lint format clean doctor stop smoke-python
+.PHONY: lab setup hub test test-fast soak bench notebooks check-config lint format clean doctor stop smoke-python
 
-lab: setup  ## Start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
+lab: setup  ## Check config/, then start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
 	$(PY) -m course_lib lab $(EXTRA)
 
 setup: $(STAMP_ENV) $(STAMP_WS)  ## Build the environment and the ROS workspace
@@ -32,8 +32,11 @@ soak: setup  ## A long random walk through the lessons in one lab (WALK_STEPS=10
 bench: setup  ## Print the course's speed and memory figures
 	$(PY) -m bench
 
-notebooks: setup  ## Re-execute every notebook to refresh its stored outputs
-	$(PY) -m course_lib notebooks
+notebooks: setup  ## Check config/, render the lessons from it, re-execute them (ARGS="--all", "--config DIR", names; ARGS=--help)
+	$(PY) -m course_lib notebooks $(ARGS)
+
+check-config: setup  ## Check every file of config/, alone and together (ARGS="--config DIR")
+	$(PY) -m course_lib check-config $(ARGS)
 
 smoke-python:  ## Prove CPython 3.12 as well: fresh venv, environment.txt, rclpy + MuJoCo smoke
 	scripts/smoke_python.sh $(SMOKE_PYTHON)

@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 __all__ = ["main"]
 
 
 def _build(args: argparse.Namespace) -> int:
-    from pathlib import Path
-
     from .workspace import build_workspace
 
     parser = argparse.ArgumentParser(prog="python -m course_lib build")
@@ -22,14 +21,14 @@ def _build(args: argparse.Namespace) -> int:
 
 
 def _lab(args: argparse.Namespace) -> int:
+    from .config_check import require_valid_config
     from .lab import run_lab
 
+    require_valid_config()  # a broken config/ stops the lab before JupyterLab starts
     return run_lab(args.extra)
 
 
 def _hub(args: argparse.Namespace) -> int:
-    from pathlib import Path
-
     from .hub.launcher import run_hub
     from .hub.settings import HUB_YAML
 
@@ -56,11 +55,39 @@ def _notebooks(args: argparse.Namespace) -> int:
     return refresh_notebooks(args.extra)
 
 
+def _check_config(args: argparse.Namespace) -> int:
+    from .config_check import check_config
+
+    parser = argparse.ArgumentParser(
+        prog="python -m course_lib check-config",
+        description="Check every file of config/ alone and together; exit 1 on any problem.",
+    )
+    parser.add_argument("--config", type=Path, help="another folder of instructor YAML")
+    parser.add_argument(
+        "--write-comments",
+        action="store_true",
+        help="rewrite the files' comments from the schema, keeping their values",
+    )
+    options = parser.parse_args(args.extra)
+    folder = options.config.resolve() if options.config else None
+    if options.write_comments:
+        from .config_check import write_comments
+
+        for path in write_comments(folder):
+            print(f"rewrote the comments of {path.name}")
+    report = check_config(folder)
+    print(report.render(), file=sys.stdout if report.ok else sys.stderr)
+    return 0 if report.ok else 1
+
+
 def _doctor(_args: argparse.Namespace) -> int:
+    from .config_check import check_config
     from .doctor import report
 
+    checked = check_config()
+    print(checked.render())
     print(report())
-    return 0
+    return 0 if checked.ok else 1
 
 
 def _stop(_args: argparse.Namespace) -> int:
@@ -78,6 +105,7 @@ COMMANDS = {
     "hub-lab": (_hub_lab, "a learner's server on the class hub (started by the hub)"),
     "test": (_test, "run the whole test suite"),
     "notebooks": (_notebooks, "re-execute the notebooks to refresh their stored outputs"),
+    "check-config": (_check_config, "check every file of config/, alone and together"),
     "doctor": (_doctor, "say what is installed and which course processes run"),
     "stop": (_stop, "stop this user's course processes (labs, simulations, nodes, daemons)"),
 }
@@ -88,7 +116,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m course_lib")
     sub = parser.add_subparsers(dest="command", required=True)
     for name, (func, summary) in COMMANDS.items():
-        sub.add_parser(name, help=summary).set_defaults(func=func)
+        # add_help=False: `-h` reaches the command itself (its own options, or jupyter lab's)
+        sub.add_parser(name, help=summary, add_help=False).set_defaults(func=func)
     args, extra = parser.parse_known_args(argv)
     args.extra = extra  # passed through to jupyter lab or pytest
     from .errors import CourseError

@@ -12,7 +12,7 @@ from typing import Any
 
 from .domain import lease_domain
 from .lab_leftovers import clean_up_killed_labs, workspaces_dir
-from .lab_markers import lab_marker
+from .lab_markers import lab_clone_marker, lab_marker
 from .machine.protocol import SOCKET_ENV
 from .paths import NOTEBOOKS_DIR, PACKAGE_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
 from .processes import ChildProcess, spawn
@@ -116,6 +116,8 @@ def run_lab(
     lease = lease_domain()
     marker = lab_marker(os.getpid())
     marker.write_text(str(lease.domain_id))
+    clone = lab_clone_marker(os.getpid())
+    clone.write_text(str(REPO_ROOT))
     env = session_env(lease.domain_id)
     env["COURSE_LAB"] = "1"
     machine = _start_machine(env, cwd)
@@ -142,6 +144,7 @@ def run_lab(
             child.stop(timeout=5.0)
         machine.stop()
         marker.unlink(missing_ok=True)
+        clone.unlink(missing_ok=True)
         shutil.rmtree(workspaces, ignore_errors=True)
         lease.release()
     return code or 0

@@ -11,10 +11,10 @@ import shutil
 from pathlib import Path
 
 from .ownership import is_course_lab, lab_markers
-from .paths import runtime_dir
+from .paths import REPO_ROOT, runtime_dir
 from .processes import reap_orphans
 
-__all__ = ["clean_up_killed_labs", "workspaces_dir"]
+__all__ = ["clean_up_killed_labs", "ran_from_this_clone", "workspaces_dir"]
 
 
 def workspaces_dir(pid: int) -> Path:
@@ -31,11 +31,23 @@ def _killed_labs() -> dict[int, list[Path]]:
     return found
 
 
+def ran_from_this_clone(files: list[Path]) -> bool:
+    """Return True if a lab's files name this clone as the one it ran from."""
+    for path in files:
+        if path.name.endswith(".clone"):
+            try:
+                return path.read_text().strip() == str(REPO_ROOT)
+            except OSError:
+                return False
+    return False
+
+
 def clean_up_killed_labs() -> str | None:
     """Stop and remove what killed labs left; return one sentence saying so, or None."""
     killed = _killed_labs()
     if not killed:
         return None
+    ours = sorted(pid for pid, files in killed.items() if ran_from_this_clone(files))
     for files in killed.values():
         for path in files:
             if path.is_dir() and not path.is_symlink():
@@ -43,6 +55,9 @@ def clean_up_killed_labs() -> str | None:
             else:
                 path.unlink(missing_ok=True)
     left = reap_orphans()
+    if not ours:  # another clone's lab (the runtime folder is per user): not this one's news
+        return None
+    killed = {pid: killed[pid] for pid in ours}
     labs = ", ".join(str(pid) for pid in sorted(killed))
     which = f"The previous lab (pid {labs})" if len(killed) == 1 else f"Earlier labs (pids {labs})"
     what = (

@@ -11,12 +11,21 @@ from pathlib import Path
 from .paths import runtime_dir
 from .processes import pid_alive
 
-__all__ = ["lab_marker", "owning_lab", "running_lab_domain"]
+__all__ = ["lab_clone_marker", "lab_marker", "owning_lab", "running_lab_domain"]
 
 
 def lab_marker(pid: int) -> Path:
     """Return the file a running lab (process `pid`) keeps its domain in."""
     return runtime_dir() / f"lab-{pid}.domain"
+
+
+def lab_clone_marker(pid: int) -> Path:
+    """Return the file naming the clone (its folder) lab `pid` runs from.
+
+    The runtime folder is per Unix user, shared by all their clones: a lab's leftovers are
+    cleaned up by any clone, but spoken of only by its own.
+    """
+    return runtime_dir() / f"lab-{pid}.clone"
 
 
 def _parent(pid: int) -> int:

@@ -1,16 +1,19 @@
 """`make notebooks`: re-execute every lesson in place to refresh its stored outputs.
 
-Each notebook runs top to bottom in a fresh kernel (its own ROS domain, the test
-environment), then volatile parts are removed so a second run changes nothing: execution
-metadata and widget state are dropped, the sanitize rules of tests/nbval_sanitize.cfg are
-applied to text outputs, and cells tagged `nbval-ignore-output` (3D view, widgets, live plots)
-keep their stored outputs when their source did not change (`--all` refreshes those too). A
+The configuration is checked first (a broken config/ runs nothing), and the cells that state a
+configured value are rendered from it (course_lib.lessons.texts). Each notebook then runs top to
+bottom in a fresh kernel (its own ROS domain, the test environment), and volatile parts are
+removed so a second run changes nothing: execution metadata and widget state are dropped, the
+sanitize rules of tests/nbval_sanitize.cfg are applied to text outputs, and cells tagged
+`nbval-ignore-output` (3D view, widgets, live plots) keep their stored outputs when their source
+and the settings the notebook was made with did not change (`--all` refreshes those too). A
 cell's stored outputs are found by its cell id, never by its source: two cells may hold the
 same code (lesson 11 runs `travel.check()` twice) and must each keep their own output.
 """
 
 from __future__ import annotations
 
+import argparse
 import configparser
 import copy
 import os
@@ -20,8 +23,10 @@ import time
 from pathlib import Path
 from typing import Any
 
+from .config.course import CourseSettings
+from .lessons.texts import METADATA_KEY, render_cells
 from .live_outputs import scrub_live_outputs
-from .paths import NOTEBOOKS_DIR, REPO_ROOT
+from .paths import CONFIG_DIR_ENV, NOTEBOOKS_DIR, REPO_ROOT
 from .testing import TEST_ENV
 
 __all__ = ["clean_notebook", "refresh_notebook", "refresh_notebooks", "sanitize_rules"]
@@ -60,6 +65,8 @@ def _clean_output(output: Any, rules: list[tuple[re.Pattern[str], str]]) -> Any:
 def clean_notebook(nb: Any, old: Any | None, *, keep_live: bool = True) -> Any:
     """Strip volatile metadata; keep old outputs of unchanged live cells (when `keep_live`)."""
     rules = sanitize_rules()
+    if old is not None and old.metadata.get(METADATA_KEY) != nb.metadata.get(METADATA_KEY):
+        keep_live = False  # made with other settings: a kept verdict or hint would be stale
     nb.metadata.pop("widgets", None)
     nb.metadata.get("kernelspec", {}).pop("env", None)
     previous = {}
@@ -88,13 +95,16 @@ def clean_notebook(nb: Any, old: Any | None, *, keep_live: bool = True) -> Any:
     return nb
 
 
-def refresh_notebook(path: Path, *, keep_live: bool = True, timeout: int = 180) -> float:
-    """Execute one notebook in place (cwd: notebooks/); return the wall time in seconds."""
+def refresh_notebook(
+    path: Path, settings: CourseSettings, *, keep_live: bool = True, timeout: int = 180
+) -> float:
+    """Render `path`'s configured cells, execute it in place; return the wall time in seconds."""
     import nbformat
     from nbclient import NotebookClient
 
     old = nbformat.read(path, as_version=4)
     nb = copy.deepcopy(old)
+    render_cells(path.name, nb, settings)
     for cell in nb.cells:
         if cell.cell_type == "code":
             cell.outputs, cell.execution_count = [], None
@@ -115,10 +125,29 @@ def refresh_notebook(path: Path, *, keep_live: bool = True, timeout: int = 180) 
     return time.monotonic() - started
 
 
+def _options(extra: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(
+        prog="make notebooks ARGS=...",
+        description="Render the lessons' configured cells from config/course.yaml, re-execute "
+        "the lessons and store their outputs (all lessons, or those named).",
+    )
+    parser.add_argument("names", nargs="*", help="notebooks, e.g. 07_move_the_robot.ipynb")
+    parser.add_argument(
+        "--all", action="store_true", help="refresh live cells (3D view, widgets) too"
+    )
+    parser.add_argument("--config", type=Path, help="another folder of instructor YAML")
+    return parser.parse_args(extra)
+
+
 def refresh_notebooks(extra: list[str]) -> int:
     """Re-execute the notebooks (all, or those named in `extra`); return an exit code."""
-    keep_live = "--all" not in extra
-    names = [a for a in extra if not a.startswith("--")]
+    from .config_check import require_valid_config
+
+    options = _options(extra)
+    if options.config is not None:
+        os.environ[CONFIG_DIR_ENV] = str(options.config.resolve())  # the kernels read it too
+    settings = require_valid_config(show_notes=False)["course.yaml"]  # broken: nothing runs
+    names = options.names
     paths = [Path(n) if os.sep in n else NOTEBOOKS_DIR / n for n in names] or sorted(
         NOTEBOOKS_DIR.glob("[0-9][0-9]_*.ipynb")
     )
@@ -126,7 +155,7 @@ def refresh_notebooks(extra: list[str]) -> int:
     failed = 0
     for path in paths:
         try:
-            seconds = refresh_notebook(path, keep_live=keep_live)
+            seconds = refresh_notebook(path, settings, keep_live=not options.all)
         except Exception as err:  # a failing cell: report it and go on with the others
             failed += 1
             print(f"FAILED {path.name}: {type(err).__name__}: {str(err)[-2000:]}", file=sys.stderr)

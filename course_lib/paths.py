@@ -13,6 +13,7 @@ from .errors import RuntimeDirError
 
 __all__ = [
     "CONFIG_DIR",
+    "CONFIG_DIR_ENV",
     "LEARNER_ROOT_ENV",
     "NOTEBOOKS_DIR",
     "PACKAGE_DIR",
@@ -20,6 +21,7 @@ __all__ = [
     "ROSJECT_DIR",
     "SOCKET_NAME_MAX",
     "WORKSPACE_INSTALL_DIR",
+    "config_dir",
     "learner_notebooks_dir",
     "runtime_dir",
     "venv_bin_dir",
@@ -30,6 +32,9 @@ REPO_ROOT = PACKAGE_DIR.parent
 ROSJECT_DIR = REPO_ROOT / "rosject"
 WORKSPACE_INSTALL_DIR = ROSJECT_DIR / "install"
 CONFIG_DIR = REPO_ROOT / "config"
+# Another folder of instructor YAML (`make notebooks ARGS="--config DIR"`, the tests' second
+# configuration): every process of the course started with it set reads that folder instead.
+CONFIG_DIR_ENV = "COURSE_CONFIG_DIR"
 NOTEBOOKS_DIR = REPO_ROOT / "notebooks"
 # On a class hub each learner has a copy of the notebooks in their home: this names its folder.
 LEARNER_ROOT_ENV = "COURSE_LEARNER_ROOT"
@@ -115,6 +120,12 @@ def learner_notebooks_dir() -> Path:
     """Return the folder of the learner's notebooks: the clone's, or their copy on a hub."""
     root = os.environ.get(LEARNER_ROOT_ENV)
     return Path(root) / "notebooks" if root else NOTEBOOKS_DIR
+
+
+def config_dir() -> Path:
+    """Return the folder of the instructor's YAML files: config/, or COURSE_CONFIG_DIR's."""
+    chosen = os.environ.get(CONFIG_DIR_ENV)
+    return Path(chosen).resolve() if chosen else CONFIG_DIR
 
 
 def venv_bin_dir() -> Path:

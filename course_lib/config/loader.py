@@ -18,8 +18,18 @@ import yaml
 
 from ..errors import ConfigError
 from ..paths import REPO_ROOT
+from .yaml_syntax import syntax_problem
 
-__all__ = ["SettingValueError", "load_settings", "parse_settings", "setting"]
+__all__ = [
+    "SettingValueError",
+    "check_file",
+    "check_text",
+    "describe_limits",
+    "display_path",
+    "load_settings",
+    "parse_settings",
+    "setting",
+]
 
 T = TypeVar("T")
 _NONE = type(None)
@@ -43,18 +53,23 @@ def setting(default: Any = dataclasses.MISSING, *, help: str = "", **limits: Any
     return dataclasses.field(default=default, metadata=meta)
 
 
-def _display_path(path: str | Path) -> str:
+def display_path(path: str | Path) -> str:
     try:
         return str(Path(path).resolve().relative_to(REPO_ROOT))
     except ValueError:
         return str(path)
 
 
+class _Broken(Exception):
+    """A mapping held a fault (already recorded): its dataclass cannot be built."""
+
+
 class _Converter:
-    """Walk a composed YAML node tree against a schema, raising ConfigError on the first fault."""
+    """Walk a composed YAML node tree against a schema, recording every fault it finds."""
 
     def __init__(self, source: str) -> None:
         self.source = source
+        self.problems: list[ConfigError] = []
         self._constructor = yaml.SafeLoader("")
 
     def fail(self, node: yaml.Node | None, key: str, problem: str, hint: str) -> ConfigError:
@@ -117,8 +132,18 @@ class _Converter:
                     f"expected {len(kinds)} values, got {len(items)}",
                     f"write exactly {len(kinds)} values for `{key}`.",
                 )
-        pairs = enumerate(zip(items, kinds, strict=True))
-        return tuple(self.convert(n, k, f"{key}[{i}]") for i, (n, k) in pairs)
+        converted, broken = [], False
+        for i, (item, kind) in enumerate(zip(items, kinds, strict=True)):
+            try:
+                converted.append(self.convert(item, kind, f"{key}[{i}]"))
+            except ConfigError as err:
+                self.problems.append(err)
+                broken = True
+            except _Broken:
+                broken = True
+        if broken:
+            raise _Broken
+        return tuple(converted)
 
     def dataclass(self, node: yaml.Node, schema: type[T], key: str) -> T:
         if not isinstance(node, yaml.MappingNode):
@@ -127,29 +152,26 @@ class _Converter:
         hints = typing.get_type_hints(schema)
         values: dict[str, Any] = {}
         lines: dict[str, yaml.Node] = {}
+        before = len(self.problems)
+        seen: set[str] = set()
         for key_node, value_node in node.value:
             name = str(self.scalar(key_node))
             full = f"{key}.{name}" if key else name
-            if name not in fields:
-                close = difflib.get_close_matches(name, fields, n=1, cutoff=0.5)
-                hint = f"did you mean `{close[0]}`? " if close else ""
-                raise self.fail(
-                    key_node, full, "unknown key", f"{hint}valid keys here: {', '.join(fields)}."
-                )
-            if name in values:
-                raise self.fail(key_node, full, "key given twice", "keep one of the two lines.")
-            values[name] = self.convert(value_node, hints[name], full)
+            try:
+                self.field(key_node, name, full, fields, seen)
+                values[name] = self.convert(value_node, hints[name], full)
+                self.check_limits(value_node, fields[name].metadata, values[name], full)
+            except ConfigError as err:
+                self.problems.append(err)
+            except _Broken:
+                pass
             lines[name] = key_node
             lines[f"{name}[]"] = value_node
-            self.check_limits(value_node, fields[name].metadata, values[name], full)
-        missing = [n for n, f in fields.items() if n not in values and _required(f)]
-        if missing:
-            raise self.fail(
-                node,
-                f"{key}.{missing[0]}" if key else missing[0],
-                "missing",
-                f"add `{missing[0]}:` here.",
-            )
+        for name in [n for n, f in fields.items() if n not in seen and _required(f)]:
+            full = f"{key}.{name}" if key else name
+            self.problems.append(self.fail(node, full, "missing", f"add `{name}:` here."))
+        if len(self.problems) > before:
+            raise _Broken
         try:
             return schema(**values)
         except SettingValueError as err:
@@ -157,6 +179,20 @@ class _Converter:
             raise self.fail(
                 _error_node(err.key, lines, node), full, err.problem, err.hint
             ) from None
+
+    def field(
+        self, node: yaml.Node, name: str, full: str, fields: dict[str, Any], seen: set[str]
+    ) -> None:
+        """Refuse a key the schema does not know, or one given twice."""
+        if name not in fields:
+            close = difflib.get_close_matches(name, fields, n=1, cutoff=0.5)
+            hint = f"did you mean `{close[0]}`? " if close else ""
+            raise self.fail(
+                node, full, "unknown key", f"{hint}valid keys here: {', '.join(fields)}."
+            )
+        if name in seen:
+            raise self.fail(node, full, "key given twice", "keep one of the two lines.")
+        seen.add(name)
 
     def check_limits(self, node: yaml.Node, meta: Any, value: Any, key: str) -> None:
         tests = {
@@ -170,8 +206,12 @@ class _Converter:
         for name, (test, words) in tests.items():
             if name in meta and value is not None and not test(value, meta[name]):
                 shown = len(value) if name.endswith("_len") else value
+                allowed = describe_limits(meta)
                 raise self.fail(
-                    node, key, f"{shown!r} is out of range", f"use a value {words} {meta[name]}."
+                    node,
+                    key,
+                    f"{shown!r} is out of range (allowed: {allowed})",
+                    f"use a value {words} {meta[name]}.",
                 )
 
 
@@ -190,38 +230,95 @@ def _required(field: dataclasses.Field[Any]) -> bool:
     return field.default is dataclasses.MISSING and field.default_factory is dataclasses.MISSING
 
 
-def parse_settings(text: str, schema: type[T], *, source: str = "<string>") -> T:
-    """Parse YAML text into `schema`; raise ConfigError naming `source`, line and key."""
-    converter = _Converter(source)
+def describe_limits(meta: Any) -> str:
+    """Return a field's limits in words, e.g. "> 0 and <= 0.26" ("any" without limits)."""
+    signs = {
+        "gt": ">",
+        "ge": ">=",
+        "lt": "<",
+        "le": "<=",
+        "min_len": "items >=",
+        "max_len": "items <=",
+    }
+    parts = [f"{sign} {meta[name]:g}" for name, sign in signs.items() if name in meta]
+    return " and ".join(parts) or "any"
+
+
+def _compose(text: str, source: str) -> yaml.Node | None:
     try:
-        root = yaml.compose(text, Loader=yaml.SafeLoader)
+        return yaml.compose(text, Loader=yaml.SafeLoader)
     except yaml.YAMLError as err:
-        mark = getattr(err, "problem_mark", None)
-        line = mark.line + 1 if mark is not None else None
-        problem = getattr(err, "problem", None) or str(err)
+        line, problem = syntax_problem(text, err)
         raise ConfigError(
             source,
             line,
             "(syntax)",
             f"not valid YAML: {problem}",
-            "check the indentation and the colons near that line.",
+            "write `key: value` (a colon and a space after each key), keep the indentation "
+            "of the lines around it, and close every [ with ].",
         ) from None
+
+
+def check_text(
+    text: str, schema: type[T], *, source: str = "<string>"
+) -> tuple[T | None, list[ConfigError]]:
+    """Parse YAML text into `schema`; return it (None when broken) and every problem found."""
+    try:
+        root = _compose(text, source)
+    except ConfigError as err:
+        return None, [err]
     if root is None:
         root = yaml.MappingNode("tag:yaml.org,2002:map", [])
-    return converter.dataclass(root, schema, "")
+    converter = _Converter(source)
+    try:
+        return converter.dataclass(root, schema, ""), []
+    except ConfigError as err:  # the top level's own check (its __post_init__)
+        return None, [*converter.problems, err]
+    except _Broken:
+        return None, converter.problems
+
+
+def _first(problems: list[ConfigError]) -> ConfigError:
+    """Return the first problem, its hint naming how many more there are."""
+    first = problems[0]
+    if len(problems) > 1:
+        first.hint += f" ({len(problems) - 1} more: `make check-config` lists them all.)"
+    return first
+
+
+def parse_settings(text: str, schema: type[T], *, source: str = "<string>") -> T:
+    """Parse YAML text into `schema`; raise ConfigError naming `source`, line and key."""
+    value, problems = check_text(text, schema, source=source)
+    if problems or value is None:
+        raise _first(problems)
+    return value
+
+
+def check_file(path: str | Path, schema: type[T]) -> tuple[T | None, list[ConfigError]]:
+    """Read the YAML file at `path` into `schema`; return it (None when broken) and problems.
+
+    A missing, unreadable or empty file is a problem too: it names the file and how to get the
+    shipped one back.
+    """
+    source = display_path(path)
+    restore = f"get the course's file back with `git checkout {source}`"
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except FileNotFoundError:
+        return None, [ConfigError(source, None, "(file)", "is missing", f"{restore}.")]
+    except OSError as err:
+        return None, [
+            ConfigError(source, None, "(file)", f"cannot be read: {err.strerror}", f"{restore}.")
+        ]
+    if not any(line.split("#", 1)[0].strip() for line in text.splitlines()):
+        problem = "holds no settings (it is empty)"
+        return None, [ConfigError(source, None, "(file)", problem, f"{restore}.")]
+    return check_text(text, schema, source=source)
 
 
 def load_settings(path: str | Path, schema: type[T]) -> T:
     """Read the YAML file at `path` into `schema`; raise ConfigError on any fault."""
-    source = _display_path(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except OSError as err:
-        raise ConfigError(
-            source,
-            None,
-            "(file)",
-            f"cannot be read: {err.strerror}",
-            "check that the file exists under config/.",
-        ) from None
-    return parse_settings(text, schema, source=source)
+    value, problems = check_file(path, schema)
+    if problems or value is None:
+        raise _first(problems)
+    return value

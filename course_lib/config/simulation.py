@@ -7,11 +7,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
 
-from ..paths import CONFIG_DIR
+from ..paths import config_dir
 from .loader import SettingValueError, load_settings, setting
 
 __all__ = [
-    "SIMULATION_YAML",
     "Camera",
     "Lidar",
     "Obstacle",
@@ -19,9 +18,9 @@ __all__ = [
     "SimulationSettings",
     "StartPose",
     "load_simulation_settings",
+    "simulation_yaml",
 ]
 
-SIMULATION_YAML = CONFIG_DIR / "simulation.yaml"
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
 
@@ -29,21 +28,25 @@ _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 class StartPose:
     """Where the robot stands after a start or a reset."""
 
-    x_m: float = setting(0.0, help="x position (m)", ge=-4.5, le=4.5)
-    y_m: float = setting(0.0, help="y position (m)", ge=-4.5, le=4.5)
-    yaw_deg: float = setting(0.0, help="heading, counter-clockwise from +x (degrees)")
+    x_m: float = setting(0.0, help="x position on the floor (m)", ge=-4.5, le=4.5)
+    y_m: float = setting(0.0, help="y position on the floor (m)", ge=-4.5, le=4.5)
+    yaw_deg: float = setting(
+        0.0, help="heading, counter-clockwise from the +x axis (degrees)", ge=-180, le=180
+    )
 
 
 @dataclass(frozen=True)
 class Obstacle:
     """A fixed box or cylinder standing on the floor."""
 
-    name: str
-    shape: Literal["box", "cylinder"]
-    position_m: tuple[float, float]
-    size_m: tuple[float, ...]
-    yaw_deg: float = 0.0
-    color: tuple[float, float, float] = (0.6, 0.6, 0.6)
+    name: str = setting(help="a simple name (letters, digits, _), unique in the world")
+    shape: Literal["box", "cylinder"] = setting(help="box or cylinder")
+    position_m: tuple[float, float] = setting(help="the centre [x, y] on the floor (m)")
+    size_m: tuple[float, ...] = setting(
+        help="box: [length, width, height]; cylinder: [diameter, height] (m)"
+    )
+    yaw_deg: float = setting(0.0, help="turned counter-clockwise (degrees)", ge=-180, le=180)
+    color: tuple[float, float, float] = setting((0.6, 0.6, 0.6), help="[red, green, blue], 0 to 1")
 
     def __post_init__(self) -> None:
         if not _NAME.match(self.name):
@@ -78,22 +81,24 @@ class Obstacle:
 class Rates:
     """How often each stream is published, in Hz of simulated time (viewer: wall time)."""
 
-    clock_hz: float = setting(50.0, gt=0, le=1000)
-    odom_hz: float = setting(50.0, gt=0, le=1000)
-    joint_states_hz: float = setting(50.0, gt=0, le=1000)
-    imu_hz: float = setting(50.0, gt=0, le=1000)
-    scan_hz: float = setting(5.0, gt=0, le=100)
-    camera_hz: float = setting(10.0, gt=0, le=60)
-    viewer_hz: float = setting(50.0, gt=0, le=120)
+    clock_hz: float = setting(50.0, help="/clock", gt=0, le=1000)
+    odom_hz: float = setting(50.0, help="/odom and /tf", gt=0, le=1000)
+    joint_states_hz: float = setting(50.0, help="/joint_states", gt=0, le=1000)
+    imu_hz: float = setting(50.0, help="/imu", gt=0, le=1000)
+    scan_hz: float = setting(5.0, help="/scan", gt=0, le=100)
+    camera_hz: float = setting(
+        10.0, help="/camera/image_raw, only while something subscribes", gt=0, le=60
+    )
+    viewer_hz: float = setting(50.0, help="the 3D view, in wall-clock time", gt=0, le=120)
 
 
 @dataclass(frozen=True)
 class Lidar:
     """The LDS-01-like laser scanner: rays in one turn, counter-clockwise from straight ahead."""
 
-    samples: int = setting(360, ge=4, le=1440)
-    range_min_m: float = setting(0.12, gt=0)
-    range_max_m: float = setting(3.5, gt=0, le=50)
+    samples: int = setting(360, help="rays per turn", ge=4, le=1440)
+    range_min_m: float = setting(0.12, help="nearest range measured (m)", gt=0, le=1)
+    range_max_m: float = setting(3.5, help="farthest range measured (m)", gt=0, le=50)
 
     def __post_init__(self) -> None:
         if self.range_min_m >= self.range_max_m:
@@ -108,9 +113,9 @@ class Lidar:
 class Camera:
     """The Raspberry Pi camera: rendered offscreen (EGL) only while someone subscribes."""
 
-    enabled: bool = True
-    width_px: int = setting(320, ge=16, le=1280)
-    height_px: int = setting(240, ge=16, le=960)
+    enabled: bool = setting(True, help="false on machines without EGL: the topics stay silent")
+    width_px: int = setting(320, help="image width (pixels)", ge=16, le=1280)
+    height_px: int = setting(240, help="image height (pixels)", ge=16, le=960)
 
 
 DEFAULT_OBSTACLES = (
@@ -124,8 +129,13 @@ DEFAULT_OBSTACLES = (
 class SimulationSettings:
     """Everything an instructor may change about the simulated world."""
 
-    real_time_factor: float = setting(1.0, help="1 = real time; 0 = as fast as possible", ge=0)
-    timestep_s: float = setting(0.002, help="physics step (s)", gt=0, le=0.01)
+    real_time_factor: float = setting(
+        1.0,
+        help="1.0 runs at real time, 2.0 twice as fast, 0 as fast as the machine can",
+        ge=0,
+        le=100,
+    )
+    timestep_s: float = setting(0.002, help="physics step (s); 0.002 is tested", gt=0, le=0.01)
     start_pose: StartPose = StartPose()
     rates: Rates = Rates()
     lidar: Lidar = Lidar()
@@ -143,10 +153,11 @@ class SimulationSettings:
             )
 
 
+def simulation_yaml() -> Path:
+    """Return the path of simulation.yaml in the instructor's config folder."""
+    return config_dir() / "simulation.yaml"
+
+
 def load_simulation_settings(path: str | Path | None = None) -> SimulationSettings:
-    """Read config/simulation.yaml (or `path`); the defaults when the file does not exist."""
-    if path is None:
-        if not SIMULATION_YAML.exists():
-            return SimulationSettings()
-        path = SIMULATION_YAML
-    return load_settings(path, SimulationSettings)
+    """Read config/simulation.yaml (or `path`); a missing or empty file is a ConfigError."""
+    return load_settings(Path(path) if path is not None else simulation_yaml(), SimulationSettings)

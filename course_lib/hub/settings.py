@@ -9,11 +9,11 @@ from pathlib import Path
 from typing import Literal
 
 from ..config.loader import SettingValueError, load_settings, setting
-from ..paths import CONFIG_DIR
+from ..paths import config_dir
 
 __all__ = ["HUB_YAML", "USER_NAME", "HubSettings", "load_hub_settings"]
 
-HUB_YAML = CONFIG_DIR / "hub.yaml"
+HUB_YAML = config_dir() / "hub.yaml"
 # Debian's useradd accepts these by default; 32 characters is Linux's limit for a user name.
 USER_NAME = re.compile(r"[a-z_][a-z0-9_-]{0,31}")
 

@@ -5,11 +5,13 @@ Every notebook's first cell: `from course_lib.lessons import start; lesson = sta
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
+from ..config.together import load_checked_settings
 from .lesson import TITLES, Lesson
 from .report import Check, SelfCheck
-from .settings import CourseSettings, load_course_settings
+from .settings import CourseSettings
 
 __all__ = ["TITLES", "Check", "CourseSettings", "Lesson", "SelfCheck", "current", "start"]
 
@@ -43,9 +45,10 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
 
     if number not in TITLES:
         raise ValueError(f"there are lessons 1 to {max(TITLES)}, not {number}")
-    settings = load_course_settings(settings_path)  # a ConfigError names file, line and key
+    _prepare_ipython()  # first: a broken setting below then shows as the course's two lines
+    course_path = Path(settings_path) if settings_path is not None else None
+    settings, _world = load_checked_settings(course_path)  # a ConfigError: file, line, key
     session = get_session()
-    _prepare_ipython()
     set_label(f"lesson {number}")
     previous = _lessons.get(number)
     lesson = Lesson(number, session, settings)

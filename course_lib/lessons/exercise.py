@@ -6,6 +6,7 @@ import contextlib
 import math
 from typing import Any
 
+from ..config.trip import Trip, answer_trip
 from ..errors import CourseError
 from .checks import only_driver, other_drivers
 from .files import Text
@@ -24,6 +25,19 @@ class TravelExercise:
         self.settings = lesson.settings.travel_exercise
         self.attempts: list[Verdict] = []
         self._start: Any = None
+
+    def answer(self) -> Trip:
+        """Return one solution of the configured task (the lesson's stored answer)."""
+        settings = self.lesson.settings
+        trip = answer_trip(
+            self.settings.target_m, self.settings.tolerance_m, settings.default_velocity_mps
+        )
+        if trip is None:
+            raise CourseError(
+                f"No velocity and travel_time reach {self.settings.target_m} m.",
+                hint="run `make check-config`: it says which setting to change.",
+            )
+        return trip
 
     def arm(self) -> Text:
         """Stop the robot, put it back at its start pose and remember where it stands."""
@@ -88,6 +102,7 @@ class TravelExercise:
             tolerance_m=self.settings.tolerance_m,
             number=len(self.attempts) + 1,
             show_hints=self.lesson.settings.show_hints,
+            answer=self.answer(),
         )
         self.attempts.append(verdict)
         self.lesson.state["exercise_passed"] = any(v.passed for v in self.attempts)

@@ -4,14 +4,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..config.trip import Trip
+
 __all__ = ["HINTS", "TravelAttempt", "Verdict", "judge_travel"]
 
 HINTS = (
     "distance = velocity × travel_time. Which pair of values gives {target:.2f} m?",
     "velocity must be a multiple of 0.01 up to 0.26 m/s, travel_time a multiple of 0.1 s; "
     "set travel_time first, then velocity (setting velocity starts the trip).",
-    "one answer: `%ros2 param set /descriptor_vel_node travel_time 5.0`, then "
-    "`%ros2 param set /descriptor_vel_node velocity 0.2`.",
+    "one answer: `%ros2 param set /descriptor_vel_node travel_time {travel_time:.1f}`, then "
+    "`%ros2 param set /descriptor_vel_node velocity {velocity:g}`.",
 )
 
 
@@ -43,6 +45,7 @@ def judge_travel(
     tolerance_m: float,
     number: int,
     show_hints: bool,
+    answer: Trip,
 ) -> Verdict:
     """Return the verdict on attempt `number` (1-based); hints only after a failure."""
     error = attempt.distance_m - target_m
@@ -69,5 +72,10 @@ def judge_travel(
             f"stopped, {abs(error):.2f} m {word} the target ({target_m:.2f} m ± "
             f"{tolerance_m * 100:g} cm)."
         )
-    hint = HINTS[min(number, len(HINTS)) - 1].format(target=target_m) if show_hints else ""
+    words = {
+        "target": target_m,
+        "travel_time": answer.travel_time_s,
+        "velocity": answer.velocity_mps,
+    }
+    hint = HINTS[min(number, len(HINTS)) - 1].format(**words) if show_hints else ""
     return Verdict(False, message, hint)

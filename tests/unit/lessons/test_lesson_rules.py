@@ -9,18 +9,19 @@ import pytest
 import yaml
 
 from course_lib.config.loader import parse_settings
+from course_lib.config.trip import Trip
 from course_lib.errors import ConfigError
 from course_lib.lessons.files import atomic_write, diff_text, numbered
 from course_lib.lessons.judging import TravelAttempt, judge_travel
 from course_lib.lessons.report import SelfCheck, check
-from course_lib.lessons.settings import COURSE_YAML, CourseSettings, load_course_settings
+from course_lib.lessons.settings import CourseSettings, course_yaml, load_course_settings
 from course_lib.widgets.yaml_file import params_yaml, set_command, write_params_file
+
+ANSWER = Trip(5.0, 0.2)
 
 
 def test_the_shipped_course_yaml_is_valid() -> None:
-    settings = load_course_settings(COURSE_YAML)
-    assert settings.travel_exercise.target_m == 1.0
-    assert settings.travel_exercise.tolerance_m == 0.05
+    assert isinstance(load_course_settings(course_yaml()), CourseSettings)
 
 
 @pytest.mark.parametrize(
@@ -30,7 +31,7 @@ def test_the_shipped_course_yaml_is_valid() -> None:
         ("show_hint: true\n", 1, "show_hint", "unknown key"),
         ("show_hints: maybe\n", 1, "show_hints", "expected true or false"),
         ("travel_exercise:\n  target_m: 1.0\n  tolerance_m: fast\n", 3, "tolerance_m", "number"),
-        ("travel_exercise:\n  target_m: 0.1\n  tolerance_m: 0.2\n", 3, "tolerance_m", "smaller"),
+        ("travel_exercise:\n  target_m: 0.4\n  tolerance_m: 0.2\n", 3, "tolerance_m", "quarter"),
     ],
 )
 def test_settings_errors_name_file_line_and_key(
@@ -70,7 +71,9 @@ def test_self_check_says_what_to_try_only_for_failures() -> None:
     ],
 )
 def test_travel_judge(attempt: TravelAttempt, passed: bool, words: str) -> None:
-    verdict = judge_travel(attempt, target_m=1.0, tolerance_m=0.05, number=1, show_hints=True)
+    verdict = judge_travel(
+        attempt, target_m=1.0, tolerance_m=0.05, number=1, show_hints=True, answer=ANSWER
+    )
     assert verdict.passed is passed
     assert words in verdict.message
     assert bool(verdict.hint) is (not passed)
@@ -78,9 +81,15 @@ def test_travel_judge(attempt: TravelAttempt, passed: bool, words: str) -> None:
 
 def test_hints_follow_attempts_and_can_be_off() -> None:
     miss = TravelAttempt(True, True, 0.4)
-    first = judge_travel(miss, target_m=1.0, tolerance_m=0.05, number=1, show_hints=True)
-    third = judge_travel(miss, target_m=1.0, tolerance_m=0.05, number=3, show_hints=True)
-    off = judge_travel(miss, target_m=1.0, tolerance_m=0.05, number=1, show_hints=False)
+    first = judge_travel(
+        miss, target_m=1.0, tolerance_m=0.05, number=1, show_hints=True, answer=ANSWER
+    )
+    third = judge_travel(
+        miss, target_m=1.0, tolerance_m=0.05, number=3, show_hints=True, answer=ANSWER
+    )
+    off = judge_travel(
+        miss, target_m=1.0, tolerance_m=0.05, number=1, show_hints=False, answer=ANSWER
+    )
     assert "velocity × travel_time" in first.hint
     assert "travel_time 5.0" in third.hint
     assert off.hint == ""
