@@ -7,7 +7,8 @@ from collections.abc import Iterator
 import pytest
 import yaml
 
-from course_lib.lessons import Lesson, load_course_settings
+from course_lib.config.course import load_course_settings
+from course_lib.lessons import Lesson
 from course_lib.ros2 import api
 from course_lib.session import get_session
 

@@ -14,7 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.lessons import Lesson, load_course_settings, start
+from course_lib.config.course import load_course_settings
+from course_lib.lessons import Lesson, start
 from course_lib.paths import REPO_ROOT
 from course_lib.ros2 import api
 from course_lib.session import Session, get_session

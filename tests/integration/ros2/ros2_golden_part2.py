@@ -15,7 +15,7 @@ from ros2_golden import GOLDEN, compare
 
 from course_lib.ros2.commands import Context, execute
 from course_lib.ros2.console import CollectingConsole
-from course_lib.testing import with_course_interfaces
+from course_lib.testing import with_course_interfaces, with_course_services
 
 CASES = {c["case"]: c for c in json.loads((GOLDEN / "cases_part2.json").read_text())}
 WAITING = "waiting for service to become available...\n"
@@ -72,6 +72,8 @@ def compare2(case: dict, got: tuple[str, str, int]) -> None:
     stdout = normalize(stdout)
     if case["command"] == "ros2 interface packages":
         expected["stdout"] = with_course_interfaces(expected["stdout"])
+    if case["command"] == "ros2 interface list -s":  # turtlesim's, built in rosject/
+        expected["stdout"] = with_course_services(expected["stdout"])
     if case["command"].startswith("ros2 interface package "):
         stdout = "\n".join(sorted(stdout.splitlines()))
         expected["stdout"] = "\n".join(sorted(expected["stdout"].splitlines()))
