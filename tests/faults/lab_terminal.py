@@ -97,5 +97,9 @@ class RestTerminal:
 
     def close(self) -> None:
         """Close the websocket (the shell keeps running until the server ends it)."""
-        self._ws.close()
+
+        async def close() -> None:  # on this terminal's own loop, as every other write
+            self._ws.close()
+
+        self._loop.run_until_complete(close())
         self._loop.close()
