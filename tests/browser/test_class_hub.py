@@ -30,6 +30,7 @@ LEARNERS = ("r2pc-alice", "r2pc-bob", "r2pc-carol")
 ADMIN = "r2pc-teacher"
 ALICE, BOB = LEARNERS[:2]
 LESSON_7 = "notebooks/07_move_the_robot.ipynb"
+LANDED: dict[str, str] = {}  # where each learner's first sign-in took them
 # The status bar names the current notebook and its kernel's state.
 _LESSON_7_IDLE = """() => {
   const bar = document.querySelector('#jp-main-statusbar');
@@ -56,6 +57,7 @@ def hub() -> Iterator[ClassHub]:
 def pages(hub: ClassHub, browser: Any) -> Iterator[dict[str, Any]]:
     """Alice and Bob signed in, each in their own browser context (cookies apart)."""
     signed_in = {name: hub.login(browser, name) for name in (ALICE, BOB)}
+    LANDED.update({name: page.url for name, page in signed_in.items()})  # a rerun keeps it
     yield signed_in
     for page in signed_in.values():
         page.context.close()
@@ -68,7 +70,7 @@ def _status(page: Any, url: str) -> tuple[int, str]:
 
 def _start_lesson_7(hub: ClassHub, page: Any, name: str) -> None:
     """Open lesson 7 next to lesson 1 (where the learner landed) and Run All Cells."""
-    assert page.url.endswith("/lab/tree/notebooks/01_setup_check.ipynb"), page.url
+    assert LANDED[name].endswith("/lab/tree/notebooks/01_setup_check.ipynb"), LANDED[name]
     page.goto(f"{hub.url}/user/{name}/lab/tree/{LESSON_7}")
     page.locator(".jp-NotebookPanel:visible .jp-CodeCell").first.wait_for(timeout=60_000)
     page.wait_for_function(_LESSON_7_IDLE, timeout=90_000)  # lesson 1's tab is open as well
