@@ -26,3 +26,26 @@ def start_kernel() -> Iterator[Callable[[], Kernel]]:
         kernel.shutdown()
     left = wait_gone(trees, 10.0)
     assert not left, f"processes left behind:\n{describe(left)}"
+
+
+@pytest.fixture
+def lab_kernel(lab) -> Iterator[Callable[[], Kernel]]:  # type: ignore[no-untyped-def]
+    """Start kernels with the environment JupyterLab gives the kernels of the module's `lab`."""
+    from course_lib.machine.protocol import SOCKET_ENV
+    from course_lib.paths import runtime_dir
+    from course_lib.testing import independent_env
+
+    kernels: list[Kernel] = []
+    socket = runtime_dir() / f"lab-{lab.process.pid}.sock"
+    env = independent_env(
+        ROS_DOMAIN_ID=str(lab.domain_id), COURSE_LAB="1", **{SOCKET_ENV: str(socket)}
+    )
+
+    def start() -> Kernel:
+        kernel = Kernel(env=env)
+        kernels.append(kernel)
+        return kernel
+
+    yield start
+    for kernel in kernels:
+        kernel.shutdown()

@@ -13,10 +13,6 @@ import pytest
 from jupyter_kernels import Kernel, describe, pid_alive, wait_gone
 from lab_server import ARTIFACTS, LabServer
 
-from course_lib.machine.protocol import SOCKET_ENV
-from course_lib.paths import runtime_dir
-from course_lib.testing import independent_env
-
 pytestmark = [pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 
 
@@ -27,25 +23,6 @@ def lab() -> Iterator[LabServer]:
         yield server
     finally:
         server.stop()
-
-
-@pytest.fixture
-def lab_kernel(lab: LabServer) -> Iterator:
-    """Start kernels with the environment JupyterLab gives the lab's kernels."""
-    kernels: list[Kernel] = []
-    socket = runtime_dir() / f"lab-{lab.process.pid}.sock"
-    env = independent_env(
-        ROS_DOMAIN_ID=str(lab.domain_id), COURSE_LAB="1", **{SOCKET_ENV: str(socket)}
-    )
-
-    def start() -> Kernel:
-        kernel = Kernel(env=env)
-        kernels.append(kernel)
-        return kernel
-
-    yield start
-    for kernel in kernels:
-        kernel.shutdown()
 
 
 def _world_pids(kernel: Kernel) -> tuple[int, int]:
