@@ -17,10 +17,14 @@ pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark
 
 SHORT_STEPS = 10
 SOAK_STEPS = 100
+# `make test` walks one seed (open, Run All, restart and re-run across lessons 1, 4, 6, 7, 10
+# and 11, with take-overs); random seeds are the soak's, until it finds 0 defects in 100 steps
+# (the last soak still met ghosts of nodes a kernel restart killed: see issue 20's note).
+SHORT_SEED = 762208
 
 
 def test_a_short_random_walk(lab_page, artifacts: Path) -> None:
-    seed, steps = walk_settings(SHORT_STEPS)
+    seed, steps = walk_settings(SHORT_STEPS, SHORT_SEED)
     walker = Walker(lab_page, artifacts)
     walker.random_walk(seed, steps)
     assert not walker.defects, walker.report(seed)

@@ -44,14 +44,18 @@ WORLD_LESSONS = (3, 6, 7, 11)  # the lessons that start (or attach to) the lab's
 OPEN_CHANCE = 0.6  # of opening one more lesson, while one is left to open
 
 
-def walk_settings(default_steps: int) -> tuple[int, int]:
-    """Return (seed, steps) from WALK_SEED and WALK_STEPS; a random seed if WALK_SEED is unset."""
+def walk_settings(default_steps: int, default_seed: int | None = None) -> tuple[int, int]:
+    """Return (seed, steps) from WALK_SEED and WALK_STEPS; without WALK_SEED, `default_seed`,
+    else a random seed."""
     seed = os.environ.get("WALK_SEED")
     steps = os.environ.get("WALK_STEPS")
-    return (
-        int(seed) if seed else random.SystemRandom().randrange(1_000_000),
-        int(steps) if steps else default_steps,
-    )
+    if seed:
+        chosen = int(seed)
+    elif default_seed is not None:
+        chosen = default_seed
+    else:
+        chosen = random.SystemRandom().randrange(1_000_000)
+    return chosen, int(steps) if steps else default_steps
 
 
 def _say(line: str) -> None:
