@@ -24,7 +24,9 @@
     Object.defineProperty(proto, "hasNoKernel", {
       configurable: true,
       get: function () {
-        return Boolean(this.__ros2CourseStarting) || noKernel.get.call(this);
+        var starting = Boolean(this.__ros2CourseStarting);
+        var kernel = this.session && this.session.kernel;
+        return noKernel.get.call(this) || (starting && !kernel);
       },
     });
     proto.startKernel = function () {
