@@ -11,6 +11,9 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
+from playwright.sync_api import Error as PlaywrightError
+from playwright.sync_api import TimeoutError as PlaywrightTimeout
+
 __all__ = [
     "Cell",
     "LabPage",
@@ -164,7 +167,7 @@ class LabPage:
                 reject.first.click()
             else:
                 self.page.keyboard.press("Escape")
-            with contextlib.suppress(Exception):  # another dialog may take its place
+            with contextlib.suppress(PlaywrightTimeout):  # another dialog took its place
                 self.page.wait_for_function(
                     "(shown) => document.querySelectorAll('.jp-Dialog').length < shown",
                     arg=shown,
@@ -306,7 +309,7 @@ class LabPage:
 
     def screenshot(self, path: Any) -> None:
         """Keep a screenshot of the page (never fails the caller)."""
-        with contextlib.suppress(Exception):  # a crashed page has nothing to show
+        with contextlib.suppress(PlaywrightError):  # a crashed page has nothing to show
             self.page.screenshot(path=str(path))
 
 
