@@ -52,6 +52,7 @@ OWNER_NS_ENV = "COURSE_OWNER_NS"  # the PID namespace in which COURSE_OWNER's pi
 NAME_ENV = "COURSE_PROCESS"
 _PR_SET_PDEATHSIG = 1
 _MAX_LINES = 5000
+_REAP_WAIT_S = 10.0  # after a child closed its output, at most, until it exits
 T = TypeVar("T")
 _LIBC = ctypes.CDLL(None, use_errno=True)  # loaded once: preexec must not load libraries
 
@@ -263,6 +264,12 @@ class ChildProcess:
                 with contextlib.suppress(Exception):
                     listener(line)
         pipe.close()
+        if stream == "stdout" or len(self._readers) == 1:
+            # The output ended: the child has exited or soon will. Reap it here, so that a
+            # child stopped from elsewhere (another notebook's lesson, `make stop`) never stays
+            # a zombie until its owner happens to ask about it.
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                self._popen.wait(timeout=_REAP_WAIT_S)
         with self._cond:
             self._cond.notify_all()
 

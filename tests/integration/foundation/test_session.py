@@ -201,3 +201,17 @@ def test_close_stops_children_and_is_idempotent() -> None:
     own.close()
     assert not node.alive
     assert own.closed
+
+
+def test_child_stopped_from_elsewhere_never_stays_a_zombie() -> None:
+    # Another notebook's lesson (or `make stop`) signals a child this process owns: its owner
+    # must reap it without being asked, or every take-over leaves a zombie behind.
+    from course_lib.processes import spawn
+
+    child = spawn([sys.executable, "-c", "import time; time.sleep(600)"], name="sleeper")
+    os.kill(child.pid, signal.SIGKILL)
+    deadline = time.monotonic() + 5.0
+    stat = Path(f"/proc/{child.pid}/stat")
+    while stat.exists() and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert not stat.exists(), f"pid {child.pid} is left as {stat.read_text().split()[2]}"
