@@ -12,8 +12,10 @@ from pathlib import Path
 import psutil
 from jupyter_client.manager import KernelManager
 
+from course_lib.core.procfs import environ as process_environ
+from course_lib.core.procfs import pid_alive
 from course_lib.paths import REPO_ROOT
-from course_lib.processes import OWNER_ENV, pid_alive, process_environ
+from course_lib.processes import OWNER_ENV
 from course_lib.testing import independent_env
 
 __all__ = [

@@ -15,6 +15,7 @@ from collections.abc import Iterator
 
 import pytest
 
+from course_lib.core.procfs import pid_namespace
 from course_lib.ownership import course_processes, protected_pids, read_process
 from course_lib.paths import runtime_dir
 from course_lib.processes import (
@@ -22,7 +23,6 @@ from course_lib.processes import (
     OWNER_ENV,
     OWNER_NS_ENV,
     owner_tag,
-    pid_namespace,
     reap_orphans,
     spawn,
 )
