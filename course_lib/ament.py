@@ -7,6 +7,7 @@ import sys
 from collections.abc import Mapping
 from pathlib import Path
 
+from .core import ament_index
 from .errors import ExecutableNotFoundError, PackageNotFoundError
 from .paths import WORKSPACE_INSTALL_DIR
 
@@ -20,34 +21,23 @@ __all__ = [
     "workspace_env",
 ]
 
-_MARKERS = Path("share/ament_index/resource_index/packages")
-
 
 def _prefixes(env: Mapping[str, str] | None = None) -> list[Path]:
-    env = os.environ if env is None else env
-    raw = env.get("AMENT_PREFIX_PATH")
-    if raw is None:  # outside a sourced shell: the course's own workspace
-        return [WORKSPACE_INSTALL_DIR]
-    return [Path(p) for p in raw.split(os.pathsep) if p]
+    listed = ament_index.prefix_path(os.environ if env is None else env)
+    return [WORKSPACE_INSTALL_DIR] if listed is None else listed  # unsourced: the course's
 
 
 def list_packages(env: Mapping[str, str] | None = None) -> dict[str, Path]:
     """Return every indexed package name with its prefix (first prefix wins)."""
-    found: dict[str, Path] = {}
-    for prefix in _prefixes(env):
-        marker_dir = prefix / _MARKERS
-        if marker_dir.is_dir():
-            for marker in sorted(marker_dir.iterdir()):
-                found.setdefault(marker.name, prefix)
-    return found
+    return ament_index.resources("packages", _prefixes(env))
 
 
 def package_prefix(package: str, env: Mapping[str, str] | None = None) -> Path:
     """Return the install prefix of `package`."""
-    for prefix in _prefixes(env):
-        if (prefix / _MARKERS / package).is_file():
-            return prefix
-    raise PackageNotFoundError(package)
+    prefix = ament_index.resource_prefix("packages", package, _prefixes(env))
+    if prefix is None:
+        raise PackageNotFoundError(package)
+    return prefix
 
 
 def package_share_directory(package: str, env: Mapping[str, str] | None = None) -> Path:
