@@ -8,6 +8,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from .core import ament_index
+from .core.env_paths import append_once, prepend
 from .errors import ExecutableNotFoundError, PackageNotFoundError
 from .paths import WORKSPACE_INSTALL_DIR
 
@@ -61,21 +62,6 @@ def find_executable(package: str, executable: str, env: Mapping[str, str] | None
     return package_prefix(package, env) / "lib" / package / executable
 
 
-def _prepend(value: str, existing: str | None) -> str:
-    parts = [value] + [p for p in (existing or "").split(os.pathsep) if p and p != value]
-    return os.pathsep.join(parts)
-
-
-def _underlay(value: str, existing: str | None) -> str:
-    """Add `value` after what the caller has (kept where it is if already there).
-
-    The course's workspace is the learner's underlay: a workspace sourced after it comes
-    first in the caller's paths and must keep winning, as in a sourced shell.
-    """
-    parts = [p for p in (existing or "").split(os.pathsep) if p]
-    return os.pathsep.join(parts if value in parts else [*parts, value])
-
-
 def _dsv_actions(prefix: Path, dsv: Path, seen: set[Path]) -> list[tuple[str, str, str]]:
     """Return (action, variable, value) from a colcon .dsv hook, following `source;` lines."""
     if dsv in seen or not dsv.is_file():
@@ -111,7 +97,7 @@ def _overlay(env: dict[str, str], prefix: Path) -> None:
             if action.startswith("prepend-non-duplicate"):
                 if action.endswith("if-exists") and not Path(value).exists():
                     continue
-                env[variable] = _underlay(value, env.get(variable))
+                env[variable] = append_once(value, env.get(variable))
             elif action == "set" or (action == "set-if-unset" and variable not in env):
                 env[variable] = value
 
@@ -124,10 +110,10 @@ def workspace_env(base: Mapping[str, str] | None = None) -> dict[str, str]:
     """
     env = dict(os.environ if base is None else base)
     install = WORKSPACE_INSTALL_DIR
-    env["AMENT_PREFIX_PATH"] = _underlay(str(install), env.get("AMENT_PREFIX_PATH"))
-    env["COLCON_PREFIX_PATH"] = _underlay(str(install), env.get("COLCON_PREFIX_PATH"))
+    env["AMENT_PREFIX_PATH"] = append_once(str(install), env.get("AMENT_PREFIX_PATH"))
+    env["COLCON_PREFIX_PATH"] = append_once(str(install), env.get("COLCON_PREFIX_PATH"))
     _overlay(env, install)
-    env["PATH"] = _prepend(str(Path(sys.executable).parent), env.get("PATH"))
+    env["PATH"] = prepend(str(Path(sys.executable).parent), env.get("PATH"))
     return env
 
 

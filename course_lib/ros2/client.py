@@ -17,6 +17,7 @@ from rclpy.action.graph import (
 )
 from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
 
+from ..core.waiting import wait_until
 from .discovery import (
     UNKNOWN_NODE,
     GraphView,
@@ -115,16 +116,6 @@ def _topics(pairs: Sequence[tuple[str, Sequence[str]]], include_hidden: bool) ->
     return tuple(
         TopicInfo(n, tuple(t)) for n, t in pairs if include_hidden or not _is_hidden_name(n)
     )
-
-
-def wait_until(predicate: Callable[[], bool], timeout: float) -> bool:
-    """Poll `predicate` until true or `timeout` seconds passed; return its last value."""
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() >= deadline:
-            return predicate()
-        time.sleep(_POLL_S)
-    return True
 
 
 class RosClient:

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import TextIO
 
 from ..core import procfs
+from ..core.waiting import wait_until
 from ..paths import runtime_dir
 from ..processes import OWNER_ENV, owner_tag
 
@@ -164,11 +165,13 @@ def stop_daemon(domain_id: int | str, *, timeout: float = STOP_TIMEOUT_S) -> boo
         sock.sendall(json.dumps({"control": SHUTDOWN}).encode() + b"\n")
         reply = json.loads(reader.readline() or "{}")
     pid = int(reply.get("pid", 0))
-    deadline = time.monotonic() + timeout
-    while pid and procfs.pid_alive(pid):
-        if time.monotonic() >= deadline:
-            raise TimeoutError("Timed out waiting for daemon to shutdown")
-        time.sleep(0.01)
+    if pid:
+        wait_until(
+            lambda: not procfs.pid_alive(pid),
+            timeout,
+            interval=0.01,
+            message="Timed out waiting for daemon to shutdown",
+        )
     return True
 
 
