@@ -90,7 +90,7 @@ class LabKernel:
 
     @property
     def pid(self) -> int:
-        return self.manager.provisioner.process.pid  # type: ignore[union-attr]
+        return self.manager.provisioner.pid  # type: ignore[union-attr]
 
     def submit(self, code: str) -> str:
         """Start executing `code` as one cell; return its message id for collect()."""

@@ -60,7 +60,7 @@ class Kernel:
     @property
     def pid(self) -> int:
         """Return the kernel's process id."""
-        return self.manager.provisioner.process.pid  # type: ignore[union-attr]
+        return self.manager.provisioner.pid  # type: ignore[union-attr]
 
     def submit(self, code: str) -> str:
         """Start executing `code` as one cell; return the message id for collect()."""
