@@ -19,6 +19,7 @@ from typing import Any
 import psutil
 from jupyter_client.manager import KernelManager
 
+from course_lib.core.procfs import pid_namespace
 from course_lib.machine.protocol import SOCKET_ENV
 from course_lib.paths import REPO_ROOT, runtime_dir
 from course_lib.processes import (
@@ -26,7 +27,6 @@ from course_lib.processes import (
     OWNER_NS_ENV,
     ChildProcess,
     owner_tag,
-    pid_namespace,
     spawn,
 )
 from course_lib.testing import independent_env
@@ -90,7 +90,7 @@ class LabKernel:
 
     @property
     def pid(self) -> int:
-        return self.manager.provisioner.process.pid  # type: ignore[union-attr]
+        return self.manager.provisioner.pid  # type: ignore[union-attr]
 
     def submit(self, code: str) -> str:
         """Start executing `code` as one cell; return its message id for collect()."""

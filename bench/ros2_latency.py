@@ -17,8 +17,8 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
+from course_lib.core.waiting import wait_until  # noqa: E402
 from course_lib.ros2 import client, start_daemon  # noqa: E402
-from course_lib.ros2.client import wait_until  # noqa: E402
 from course_lib.ros2.connect import daemon_socket  # noqa: E402
 from course_lib.ros2.magics import run_line  # noqa: E402
 from course_lib.session import get_session  # noqa: E402

@@ -11,9 +11,9 @@ import contextlib
 import re
 import signal
 import threading
-import time
 from dataclasses import asdict, dataclass
 
+from ..core.waiting import wait_until
 from ..processes import owner_tag
 from ..signalling import send
 
@@ -57,9 +57,7 @@ def stop_tagged(tag: str, *, grace_s: float = 5.0) -> bool:
                 send(pid, sig, group=True, reason=reason)
             except ProcessLookupError:
                 send(pid, sig, reason=reason)
-        deadline = time.monotonic() + wait_s
-        while owner_tag(pid) == tag and time.monotonic() < deadline:
-            time.sleep(0.02)
+        wait_until(lambda: owner_tag(pid) != tag, wait_s)
     return owner_tag(pid) != tag
 
 

@@ -8,7 +8,8 @@ import queue
 import time
 from typing import Any
 
-from .client import DISCOVERY_WAIT_S, YOUNG_CLIENT_S, wait_until
+from ..core.waiting import wait_until
+from .client import DISCOVERY_WAIT_S, YOUNG_CLIENT_S
 from .context import Context
 from .msgyaml import message_to_yaml
 

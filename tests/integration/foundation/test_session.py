@@ -13,9 +13,10 @@ from pathlib import Path
 import pytest
 from rclpy.parameter_client import AsyncParameterClient
 
+from course_lib.core.procfs import pid_alive
 from course_lib.errors import ExecutableNotFoundError, PackageNotFoundError
 from course_lib.paths import ROSJECT_DIR
-from course_lib.processes import OWNER_ENV, pid_alive, reap_orphans
+from course_lib.processes import OWNER_ENV, reap_orphans
 from course_lib.session import Session
 
 pytestmark = pytest.mark.ros

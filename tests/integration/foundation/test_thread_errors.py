@@ -10,8 +10,8 @@ import rclpy
 
 from course_lib import session as session_module
 from course_lib.config.simulation import load_simulation_settings
+from course_lib.core.waiting import wait_until
 from course_lib.errors import SessionThreadError
-from course_lib.ros2.client import wait_until
 from course_lib.session import Session, get_session
 
 pytestmark = pytest.mark.ros

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
+from course_lib.core.waiting import wait_until
 from course_lib.ros2 import api
-from course_lib.ros2.client import wait_until
 from course_lib.session import Session, get_session
 
 GOLDEN = Path(__file__).resolve().parents[2] / "golden" / "ros2"

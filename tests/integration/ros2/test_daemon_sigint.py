@@ -7,8 +7,8 @@ import signal
 
 import pytest
 
+from course_lib.core.waiting import wait_until
 from course_lib.processes import spawn
-from course_lib.ros2.client import wait_until
 from course_lib.ros2.connect import daemon_argv, daemon_socket
 from course_lib.session import Session
 

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
+from course_lib.core.procfs import pid_alive
 from course_lib.errors import ConfigError
-from course_lib.processes import pid_alive
 from course_lib.session import Session
 from course_lib.sim import start_world
 
