@@ -42,6 +42,7 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
     """
     from ..machine.takeover import set_label
     from ..session import get_session
+    from ..widgets.events import parameter_events
 
     if number not in TITLES:
         raise ValueError(f"there are lessons 1 to {max(TITLES)}, not {number}")
@@ -49,6 +50,7 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
     course_path = Path(settings_path) if settings_path is not None else None
     settings, _world = load_checked_settings(course_path)  # a ConfigError: file, line, key
     session = get_session()
+    parameter_events(session)  # listening from now on: no later change is missed (events.py)
     set_label(f"lesson {number}")
     previous = _lessons.get(number)
     lesson = Lesson(number, session, settings)

@@ -2,14 +2,23 @@
 
 from __future__ import annotations
 
+import contextlib
 import html
 import threading
+import weakref
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["EventsTable", "ParameterChange", "changes_of", "subscribe_parameter_events"]
+__all__ = [
+    "EventsTable",
+    "ParameterChange",
+    "ParameterEventsFeed",
+    "changes_of",
+    "parameter_events",
+    "subscribe_parameter_events",
+]
 
 
 @dataclass(frozen=True)
@@ -38,14 +47,62 @@ def changes_of(msg: Any) -> list[ParameterChange]:
     return out
 
 
-def subscribe_parameter_events(session: Any, callback: Callable[[Any], None]) -> Any:
-    """Subscribe the session's node to /parameter_events; return the subscription."""
-    from rcl_interfaces.msg import ParameterEvent
-    from rclpy.qos import qos_profile_parameter_events
+class ParameterEventsFeed:
+    """One /parameter_events subscription per session, shared by every widget that listens.
 
-    return session.node.create_subscription(
-        ParameterEvent, "/parameter_events", callback, qos_profile_parameter_events
-    )
+    A lesson makes it when it starts, long before it changes a parameter: a subscription made
+    the moment before a change may not be matched yet by the node's publisher (parameter
+    events are volatile), and that change would never arrive.
+    """
+
+    def __init__(self, session: Any) -> None:
+        from rcl_interfaces.msg import ParameterEvent
+        from rclpy.qos import qos_profile_parameter_events
+
+        self._listeners: list[Callable[[Any], None]] = []
+        self._lock = threading.Lock()
+        self._sub = session.node.create_subscription(
+            ParameterEvent, "/parameter_events", self._on_event, qos_profile_parameter_events
+        )
+
+    def _on_event(self, msg: Any) -> None:
+        with self._lock:
+            listeners = list(self._listeners)
+        for listener in listeners:
+            with contextlib.suppress(Exception):  # one widget's error never silences another
+                listener(msg)
+
+    def listen(self, callback: Callable[[Any], None]) -> Callable[[], None]:
+        """Call `callback` with every ParameterEvent from now on; return what stops it."""
+        with self._lock:
+            self._listeners.append(callback)
+
+        def stop() -> None:
+            with self._lock, contextlib.suppress(ValueError):
+                self._listeners.remove(callback)
+
+        return stop
+
+
+_feeds: weakref.WeakKeyDictionary[Any, ParameterEventsFeed] = weakref.WeakKeyDictionary()
+_feeds_lock = threading.Lock()
+
+
+def parameter_events(session: Any) -> ParameterEventsFeed:
+    """Return `session`'s /parameter_events feed, subscribing the first time."""
+    with _feeds_lock:
+        feed = _feeds.get(session)
+        if feed is None:
+            feed = _feeds[session] = ParameterEventsFeed(session)
+        return feed
+
+
+def subscribe_parameter_events(
+    session: Any, callback: Callable[[Any], None]
+) -> Callable[[], None]:
+    """Call `callback` with each /parameter_events message of `session`'s domain; return
+    what stops it."""
+    return parameter_events(session).listen(callback)
 
 
 class EventsTable:
@@ -59,7 +116,7 @@ class EventsTable:
         self.rows = rows
         self.widget = widgets.HTML(self._html())
         self._lock = threading.Lock()
-        self._sub = subscribe_parameter_events(session, self._on_event)
+        self._stop_listening = subscribe_parameter_events(session, self._on_event)
 
     def _on_event(self, msg: Any) -> None:
         with self._lock:
@@ -82,5 +139,4 @@ class EventsTable:
 
     def close(self) -> None:
         """Stop listening."""
-        if not self.session.closed:
-            self.session.node.destroy_subscription(self._sub)
+        self._stop_listening()

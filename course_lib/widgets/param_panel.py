@@ -84,7 +84,7 @@ class ParameterPanel:
         self.save_button.on_click(lambda _b: self._save_clicked())
         title = widgets.HTML(f"<b>Parameters of {self.node}</b>")
         self.widget = widgets.VBox([title, *self.controls.values(), self.save_button, self.log])
-        self._sub = subscribe_parameter_events(self.session, self._on_event)
+        self._stop_listening = subscribe_parameter_events(self.session, self._on_event)
 
     def _changed(self, name: str) -> Any:
         def handler(change: Any) -> None:
@@ -153,5 +153,4 @@ class ParameterPanel:
 
     def close(self) -> None:
         """Stop following /parameter_events."""
-        if not self.session.closed:
-            self.session.node.destroy_subscription(self._sub)
+        self._stop_listening()

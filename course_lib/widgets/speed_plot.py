@@ -29,10 +29,8 @@ class SpeedPlot:
         self._image: Any = None
         self._thread: threading.Thread | None = None
         node = session.node
-        self._subs = [
-            node.create_subscription(Odometry, "/odom", self._on_odom, 10),
-            subscribe_parameter_events(session, self._on_event),
-        ]
+        self._odom = node.create_subscription(Odometry, "/odom", self._on_odom, 10)
+        self._stop_events = subscribe_parameter_events(session, self._on_event)
 
     def _on_odom(self, msg: Any) -> None:
         stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
@@ -88,7 +86,7 @@ class SpeedPlot:
         self._stop.set()
         if self._thread is not None:
             self._thread.join(timeout=2.0)
-        if not self.session.closed:
-            for sub in self._subs:
-                self.session.node.destroy_subscription(sub)
-        self._subs = []
+        self._stop_events()
+        if self._odom is not None and not self.session.closed:
+            self.session.node.destroy_subscription(self._odom)
+        self._odom = None

@@ -226,3 +226,13 @@ def test_lesson9_fails_for_a_params_file_left_by_an_earlier_run(tmp_path: Path) 
 def test_lesson10_fails_when_nothing_was_launched() -> None:
     lesson = start(10)
     assert "the Python launch file started param_vel_node with velocity 0.2" in _failed(lesson)
+
+
+def test_a_lesson_listens_to_parameter_events_from_its_first_cell() -> None:
+    """Lesson 7's plot marks the change made right after it is made: the session subscribed
+    when the lesson started, so the node's publisher has long matched it (events are volatile;
+    a subscription made just before a change can miss it: a walk once counted 1 mark of 2)."""
+    lesson = start(7)
+    node = lesson.session.node
+    readers = node.get_subscriptions_info_by_topic("/parameter_events")
+    assert any(info.node_name == node.get_name() for info in readers), readers
