@@ -61,7 +61,7 @@ $(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py
 	$(PY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
 	@touch $@
 
-$(STAMP_WS): $(STAMP_ENV) $(ROSJECT_SOURCES) course_lib/workspace.py course_lib/cmake/wheel_fixups.cmake
+$(STAMP_WS): $(STAMP_ENV) $(ROSJECT_SOURCES) course_lib/tools/workspace.py course_lib/cmake/wheel_fixups.cmake
 	$(PY) -m course_lib build
 
 clean:  ## Remove the environment and the built workspace

@@ -16,7 +16,7 @@ Layout (modules depend downward, toward the core; a unit test checks for import 
   `resolve` (package and arguments), `cli`, `describe`, `dry_run` (`declared`), `handle`.
 """
 
-from .dry_run import DryRunReport, dry_run
-from .handle import LaunchHandle, launch
+from .command.dry_run import DryRunReport, dry_run
+from .command.handle import LaunchHandle, launch
 
 __all__ = ["DryRunReport", "LaunchHandle", "dry_run", "launch"]

@@ -7,7 +7,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from ..paths import REPO_ROOT, learner_notebooks_dir
+from ..core.paths import REPO_ROOT, learner_notebooks_dir
 
 __all__ = [
     "LEARNER_DIR",

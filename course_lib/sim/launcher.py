@@ -12,8 +12,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from ..errors import ProcessStartError
-from ..processes import ChildProcess
+from ..core.errors import ProcessStartError
+from ..processes.children import ChildProcess
 from .world_process import READY_TEXT
 
 __all__ = ["Spawner", "start_world_processes"]

@@ -37,7 +37,7 @@ from meshcat.servers.zmqserver import (
     ZMQWebSocketBridge,
 )
 
-from ..paths import runtime_dir
+from ..core.paths import runtime_dir
 
 __all__ = ["ORIGINS_ENV", "LocalBridge", "command_socket_url", "main", "origin_allowed"]
 

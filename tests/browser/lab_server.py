@@ -13,9 +13,9 @@ from pathlib import Path
 
 import nbformat
 
-from course_lib.paths import NOTEBOOKS_DIR, REPO_ROOT
-from course_lib.processes import ChildProcess, spawn
-from course_lib.testing import independent_env
+from course_lib.core.paths import NOTEBOOKS_DIR, REPO_ROOT
+from course_lib.processes.children import ChildProcess, spawn
+from course_lib.tools.testing import independent_env
 
 __all__ = ["ARTIFACTS", "LabServer"]
 

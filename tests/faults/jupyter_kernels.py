@@ -12,9 +12,9 @@ from pathlib import Path
 import psutil
 from jupyter_client.manager import KernelManager
 
-from course_lib.paths import REPO_ROOT
-from course_lib.processes import OWNER_ENV, pid_alive, process_environ
-from course_lib.testing import independent_env
+from course_lib.core.paths import REPO_ROOT
+from course_lib.processes.children import OWNER_ENV, pid_alive, process_environ
+from course_lib.tools.testing import independent_env
 
 __all__ = [
     "CellResult",

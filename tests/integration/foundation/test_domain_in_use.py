@@ -8,8 +8,8 @@ import time
 
 import pytest
 
-from course_lib.domain import domain_in_use, lease_domain
-from course_lib.testing import independent_env
+from course_lib.processes.domain import domain_in_use, lease_domain
+from course_lib.tools.testing import independent_env
 
 pytestmark = pytest.mark.ros
 

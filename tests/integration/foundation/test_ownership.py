@@ -15,9 +15,8 @@ from collections.abc import Iterator
 
 import pytest
 
-from course_lib.ownership import course_processes, protected_pids, read_process
-from course_lib.paths import runtime_dir
-from course_lib.processes import (
+from course_lib.core.paths import runtime_dir
+from course_lib.processes.children import (
     NAME_ENV,
     OWNER_ENV,
     OWNER_NS_ENV,
@@ -26,7 +25,8 @@ from course_lib.processes import (
     reap_orphans,
     spawn,
 )
-from course_lib.testing import independent_env
+from course_lib.processes.ownership import course_processes, protected_pids, read_process
+from course_lib.tools.testing import independent_env
 
 SLEEP = [sys.executable, "-c", "import time; time.sleep(120)"]
 

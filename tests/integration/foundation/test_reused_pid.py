@@ -16,11 +16,11 @@ import sys
 
 from pid_namespace import namespace_prefix
 
-from course_lib.testing import independent_env
+from course_lib.tools.testing import independent_env
 
 SCENARIO = """
 import json, subprocess, time
-from course_lib.processes import spawn
+from course_lib.processes.children import spawn
 
 def stranger_with_pid(pid):
     # A start time counts clock ticks (10 ms): a real reuse of a pid comes a whole wrap of the

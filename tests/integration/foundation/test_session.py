@@ -13,10 +13,10 @@ from pathlib import Path
 import pytest
 from rclpy.parameter_client import AsyncParameterClient
 
-from course_lib.errors import ExecutableNotFoundError, PackageNotFoundError
-from course_lib.paths import ROSJECT_DIR
-from course_lib.processes import OWNER_ENV, pid_alive, reap_orphans
-from course_lib.session import Session
+from course_lib.core.errors import ExecutableNotFoundError, PackageNotFoundError
+from course_lib.core.paths import ROSJECT_DIR
+from course_lib.processes.children import OWNER_ENV, pid_alive, reap_orphans
+from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
 
@@ -104,7 +104,7 @@ def test_two_sessions_never_see_each_other(session: Session) -> None:
 OWNER_SCRIPT = textwrap.dedent(
     """
     import sys
-    from course_lib.session import Session
+    from course_lib.session.session import Session
     s = Session()
     nodes = [s.run("parameter_tests", "param_vel") for _ in range(2)]
     sleeper = s.spawn([sys.executable, "-c", "import time; time.sleep(600)"], name="sleeper")

@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.processes import spawn
-from course_lib.signalling import LOG_ENV
+from course_lib.core.signalling import LOG_ENV
+from course_lib.processes.children import spawn
 
 
 def test_stopping_a_child_logs_each_signal_with_sender_target_and_reason(

@@ -8,11 +8,11 @@ import threading
 import pytest
 import rclpy
 
-from course_lib import session as session_module
 from course_lib.config.simulation import load_simulation_settings
-from course_lib.errors import SessionThreadError
-from course_lib.ros2.client import wait_until
-from course_lib.session import Session, get_session
+from course_lib.core.errors import SessionThreadError
+from course_lib.ros2.node.client import wait_until
+from course_lib.session import session as session_module
+from course_lib.session.session import Session, get_session
 
 pytestmark = pytest.mark.ros
 
@@ -32,7 +32,7 @@ def _thread_died(session: Session) -> bool:
 def test_session_thread_error_is_logged_and_reported(caplog: pytest.LogCaptureFixture) -> None:
     session = Session()
     try:
-        with caplog.at_level(logging.ERROR, logger="course_lib.session"):
+        with caplog.at_level(logging.ERROR, logger="course_lib.session.session"):
             session.node.create_timer(0.01, _broken_callback)
             assert _thread_died(session)
         record = next(r for r in caplog.records if "ROS thread stopped" in r.getMessage())
@@ -69,15 +69,15 @@ def test_sim_bridge_thread_error_stops_the_world(
     session: Session, caplog: pytest.LogCaptureFixture
 ) -> None:
     """The bridge's loop ends (the process then exits 1) instead of ignoring every command."""
-    from course_lib.sim.bridge import Bridge
-    from course_lib.sim.physics import Simulation
+    from course_lib.sim.ros.bridge import Bridge
+    from course_lib.sim.world.physics import Simulation
 
     context = rclpy.Context()
     rclpy.init(context=context, domain_id=session.domain_id)
     bridge = Bridge(Simulation(load_simulation_settings()), context)
     try:
         bridge.nodes["mujoco"].create_timer(0.01, _broken_callback)
-        with caplog.at_level(logging.ERROR, logger="course_lib.sim.bridge"):
+        with caplog.at_level(logging.ERROR, logger="course_lib.sim.ros.bridge"):
             loop = threading.Thread(target=bridge.run, daemon=True)
             loop.start()
             loop.join(timeout=20)

@@ -20,9 +20,9 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.domain import lease_domain
-from course_lib.paths import REPO_ROOT
-from course_lib.testing import TEST_ENV
+from course_lib.core.paths import REPO_ROOT
+from course_lib.processes.domain import lease_domain
+from course_lib.tools.testing import TEST_ENV
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
@@ -32,8 +32,8 @@ pytestmark = [pytest.mark.ros, pytest.mark.slow]
 LEARNER = """
 import json, sys, time
 import rclpy
-from course_lib.domain import lease_domain
-from course_lib.session import Session
+from course_lib.processes.domain import lease_domain
+from course_lib.session.session import Session
 name, start = sys.argv[1], int(sys.argv[2])
 lease = lease_domain(start=start)
 print(json.dumps({"domain": lease.domain_id}), flush=True)

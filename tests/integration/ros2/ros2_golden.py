@@ -10,9 +10,9 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.ros2 import api
-from course_lib.ros2.client import wait_until
-from course_lib.session import Session, get_session
+from course_lib.ros2.api import nodes_and_params as api
+from course_lib.ros2.node.client import wait_until
+from course_lib.session.session import Session, get_session
 
 GOLDEN = Path(__file__).resolve().parents[2] / "golden" / "ros2"
 TYPES_DEFAULTS = {
@@ -53,7 +53,7 @@ def ros_session() -> Iterator[Session]:
 def daemon(ros_session: Session) -> Iterator[None]:
     """Start the terminal commands' daemon for the session's domain."""
     from course_lib.ros2 import start_daemon
-    from course_lib.ros2.connect import daemon_socket
+    from course_lib.ros2.node.connect import daemon_socket
 
     child = start_daemon(ros_session.env)
     assert wait_until(lambda: daemon_socket(ros_session.domain_id).exists(), 15)
@@ -67,7 +67,7 @@ def run_console(env: dict[str, str], command: str) -> tuple[str, str, int]:
 
     argv = shlex.split(command)[1:]
     proc = subprocess.run(
-        [sys.executable, "-m", "course_lib.cli", *argv],
+        [sys.executable, "-m", "course_lib.ros2.command.cli", *argv],
         cwd=GOLDEN,
         env=env,
         capture_output=True,

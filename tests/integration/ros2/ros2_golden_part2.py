@@ -13,9 +13,9 @@ import time
 
 from ros2_golden import GOLDEN, compare
 
-from course_lib.ros2.commands import Context, execute
-from course_lib.ros2.console import CollectingConsole
-from course_lib.testing import with_course_interfaces, with_course_services
+from course_lib.ros2.command.commands import Context, execute
+from course_lib.ros2.verbs.console import CollectingConsole
+from course_lib.tools.testing import with_course_interfaces, with_course_services
 
 CASES = {c["case"]: c for c in json.loads((GOLDEN / "cases_part2.json").read_text())}
 WAITING = "waiting for service to become available...\n"
@@ -85,7 +85,7 @@ def interrupt_console(env: dict[str, str], command: str, after_s: float) -> tupl
     import shlex
 
     proc = subprocess.Popen(
-        [sys.executable, "-m", "course_lib.cli", *shlex.split(command)[1:]],
+        [sys.executable, "-m", "course_lib.ros2.command.cli", *shlex.split(command)[1:]],
         env=env,
         cwd=GOLDEN,
         stdout=subprocess.PIPE,
@@ -107,7 +107,7 @@ def interrupt_api(command: str, after_s: float) -> tuple[str, str, int]:
     """Run a command line in this process and cancel it after `after_s` (the door's Ctrl-C)."""
     import shlex
 
-    from course_lib.ros2 import api
+    from course_lib.ros2.api import nodes_and_params as api
 
     console = CollectingConsole()
     timer = threading.Timer(after_s, console.cancelled.set)

@@ -9,9 +9,9 @@ import time
 
 import pytest
 
-from course_lib.ros2.client import RosClient, wait_until
-from course_lib.ros2.discovery import FASTDDS_DEFAULT_ANNOUNCEMENT_S
-from course_lib.session import Session
+from course_lib.ros2.node.client import RosClient, wait_until
+from course_lib.ros2.node.discovery import FASTDDS_DEFAULT_ANNOUNCEMENT_S
+from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
 

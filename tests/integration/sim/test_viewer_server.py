@@ -18,8 +18,8 @@ from meshcat.commands import SetTransform
 from meshcat.path import Path as MeshcatPath
 from meshcat.servers.zmqserver import ZMQWebSocketBridge
 
-from course_lib.testing import independent_env
-from course_lib.viz.live import ServerWindow
+from course_lib.sim.view.live import ServerWindow
+from course_lib.tools.testing import independent_env
 from course_lib.viz.server import ORIGINS_ENV, LocalBridge, origin_allowed
 
 HUB = "https://hub.example.org"

@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.domain import isolation_env, lease_domain
-from course_lib.paths import REPO_ROOT, ROSJECT_DIR
+from course_lib.core.paths import REPO_ROOT, ROSJECT_DIR
+from course_lib.processes.domain import isolation_env, lease_domain
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 

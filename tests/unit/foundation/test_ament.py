@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from course_lib import ament
-from course_lib.errors import ExecutableNotFoundError, PackageNotFoundError
+from course_lib.core import ament
+from course_lib.core.errors import ExecutableNotFoundError, PackageNotFoundError
 
 
 @pytest.fixture

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.paths import REPO_ROOT
+from course_lib.core.paths import REPO_ROOT
 
 CITED = re.compile(r"\b([A-Z][A-Z_]+\.md)\b")
 SUFFIXES = {".py", ".md", ".toml", ".cfg", ".txt", ".ipynb", ".yaml", ""}

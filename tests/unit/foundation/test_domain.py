@@ -11,7 +11,7 @@ from collections.abc import Iterator
 
 import pytest
 
-from course_lib.domain import (
+from course_lib.processes.domain import (
     candidate_domains,
     domain_in_use,
     isolation_env,
@@ -21,7 +21,7 @@ from course_lib.domain import (
 )
 
 HOLDER = (
-    "from course_lib.domain import lease_domain; import sys;"
+    "from course_lib.processes.domain import lease_domain; import sys;"
     "l = lease_domain({}); print(l.domain_id, flush=True); sys.stdin.read()"
 )
 

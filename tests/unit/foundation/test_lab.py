@@ -10,8 +10,9 @@ from pathlib import Path
 
 import pytest
 
-from course_lib import lab, lab_markers
-from course_lib.paths import runtime_dir
+from course_lib.core.paths import runtime_dir
+from course_lib.lab import jupyterlab as lab
+from course_lib.processes import lab_markers
 
 
 def test_lab_listens_on_loopback_and_keeps_ros2_on_terminal_path() -> None:

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from course_lib.lab_leftovers import ran_from_this_clone
-from course_lib.paths import REPO_ROOT
+from course_lib.core.paths import REPO_ROOT
+from course_lib.lab.leftovers import ran_from_this_clone
 
 
 def _files(tmp_path: Path, clone: str | None) -> list[Path]:

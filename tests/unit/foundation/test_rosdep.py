@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from course_lib import rosdep
+from course_lib.tools import rosdep
 
 MANIFEST = """<?xml version="1.0"?>
 <package format="3"><name>{name}</name>

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from course_lib.paths import ROSJECT_DIR
+from course_lib.core.paths import ROSJECT_DIR
 
 ALL_PACKAGES = sorted(p.parent for p in ROSJECT_DIR.glob("*/package.xml"))
 

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.errors import RuntimeDirError
-from course_lib.paths import SOCKET_NAME_MAX, runtime_dir
+from course_lib.core.errors import RuntimeDirError
+from course_lib.core.paths import SOCKET_NAME_MAX, runtime_dir
 
 
 @pytest.fixture
@@ -61,7 +61,7 @@ def test_open_to_others_is_refused_with_the_fix(tmpdir_is, short_tmp: Path) -> N
 def home_is(monkeypatch: pytest.MonkeyPatch, short_tmp: Path):  # type: ignore[no-untyped-def]
     """Make the temp folders (TMPDIR's and /tmp) one folder and HOME another; return the
     home's runtime folder."""
-    import course_lib.paths as paths
+    import course_lib.core.paths as paths
 
     monkeypatch.setattr(paths, "_POSIX_TMP", short_tmp)
     home = short_tmp / "home"

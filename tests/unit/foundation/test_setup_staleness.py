@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.doctor import stale_steps
-from course_lib.paths import REPO_ROOT, ROSJECT_DIR
+from course_lib.core.paths import REPO_ROOT, ROSJECT_DIR
+from course_lib.tools.doctor import stale_steps
 
 STAMP = "rosject/install/.built"
 PACKAGE = ROSJECT_DIR / "parameter_tests"

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from course_lib.stopping import Stopped, StopReport
+from course_lib.processes.stopping import Stopped, StopReport
 
 
 def test_each_stopped_process_is_one_line_with_its_name_and_pid() -> None:

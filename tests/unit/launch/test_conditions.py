@@ -6,20 +6,20 @@ import sys
 
 import pytest
 
-from course_lib.launch.actions import LogInfo
-from course_lib.launch.conditions import (
+from course_lib.launch.api.actions import LogInfo
+from course_lib.launch.api.conditions import (
     IfCondition,
     InvalidConditionExpressionError,
     LaunchConfigurationEquals,
     LaunchConfigurationNotEquals,
     UnlessCondition,
 )
-from course_lib.launch.context import LaunchContext
-from course_lib.launch.event_handlers import OnExecutionComplete, OnProcessExit, OnShutdown
-from course_lib.launch.events import ExecutionComplete, ProcessExited, Shutdown
-from course_lib.launch.process import ExecuteProcess
-from course_lib.launch.shim import launch_modules
-from course_lib.launch.substitutions import LaunchConfiguration, PythonExpression
+from course_lib.launch.api.process import ExecuteProcess
+from course_lib.launch.api.substitutions import LaunchConfiguration, PythonExpression
+from course_lib.launch.core.context import LaunchContext
+from course_lib.launch.core.event_handlers import OnExecutionComplete, OnProcessExit, OnShutdown
+from course_lib.launch.core.events import ExecutionComplete, ProcessExited, Shutdown
+from course_lib.launch.runtime.shim import launch_modules
 
 
 def _context(**configs: str) -> LaunchContext:
@@ -121,7 +121,7 @@ def test_shim_names_what_the_course_lacks_and_suggests_typos() -> None:
         with pytest.raises(ImportError) as module:
             import launch.frontend  # type: ignore[import-not-found] # noqa: F401
         from launch.event_handlers import OnProcessIO  # type: ignore[import-not-found]
-    assert OnProcessIO.__module__ == "course_lib.launch.event_handlers"
+    assert OnProcessIO.__module__ == "course_lib.launch.core.event_handlers"
     assert str(lacking.value).startswith(
         "'LifecycleNode' of 'launch_ros.actions' is not available in this course; "
         "'launch_ros.actions' here has: Node, "
@@ -139,10 +139,10 @@ def test_shim_names_what_the_course_lacks_and_suggests_typos() -> None:
 
 
 def test_show_args_marks_arguments_that_depend_on_a_condition_or_event() -> None:
-    from course_lib.launch.describe import format_arguments
-    from course_lib.launch.description import LaunchDescription
-    from course_lib.launch.event_actions import RegisterEventHandler
-    from course_lib.launch.launch_argument import DeclareLaunchArgument
+    from course_lib.launch.api.event_actions import RegisterEventHandler
+    from course_lib.launch.command.describe import format_arguments
+    from course_lib.launch.core.description import LaunchDescription
+    from course_lib.launch.core.launch_argument import DeclareLaunchArgument
 
     description = LaunchDescription(
         [
@@ -165,13 +165,13 @@ def _visit_all(entity: object, context: LaunchContext) -> None:
 
 
 def test_group_scopes_and_forwarding() -> None:
-    from course_lib.launch.actions import GroupAction, SetLaunchConfiguration
+    from course_lib.launch.api.actions import GroupAction, SetLaunchConfiguration
 
     context = _context(outer="1")
     seen: dict[str, dict[str, str]] = {}
 
     def record(name: str) -> object:
-        from course_lib.launch.actions import OpaqueFunction
+        from course_lib.launch.api.actions import OpaqueFunction
 
         return OpaqueFunction(
             function=lambda ctx: seen.__setitem__(name, dict(ctx.launch_configurations))

@@ -6,10 +6,10 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.launch.context import LaunchContext
-from course_lib.launch.description import load_any_launch_file
-from course_lib.launch.frontend_substitutions import parse_substitution
-from course_lib.launch.substitutions import perform_substitutions
+from course_lib.launch.api.substitution_syntax import parse_substitution
+from course_lib.launch.api.substitutions import perform_substitutions
+from course_lib.launch.core.context import LaunchContext
+from course_lib.launch.core.description import load_any_launch_file
 
 FIXTURE = Path(__file__).resolve().parents[2] / "fixtures" / "launch_pkg"
 
@@ -70,7 +70,7 @@ def test_unknown_xml_tag_is_reported(tmp_path: Path) -> None:
 
 
 def test_tags_and_substitutions_the_course_lacks_fail_in_one_line(tmp_path: Path) -> None:
-    from course_lib.launch.loading import CourseUnavailableError
+    from course_lib.launch.core.loading import CourseUnavailableError
 
     container = tmp_path / "container.launch.xml"
     container.write_text(
@@ -94,7 +94,7 @@ def test_tags_and_substitutions_the_course_lacks_fail_in_one_line(tmp_path: Path
 
 def test_a_dry_run_says_which_code_reading_the_file_ran(tmp_path: Path) -> None:
     """$(eval) and $(command) run code while the file is read, as upstream: the dry run says so."""
-    from course_lib.launch.dry_run import dry_run_file
+    from course_lib.launch.command.dry_run import dry_run_file
 
     path = tmp_path / "code.launch.xml"
     path.write_text(

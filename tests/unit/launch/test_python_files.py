@@ -8,15 +8,15 @@ from pathlib import Path
 import pytest
 import yaml
 
-from course_lib.launch.cli import LaunchCommandError, parse_launch_arguments
-from course_lib.launch.context import LaunchContext
-from course_lib.launch.describe import format_arguments
-from course_lib.launch.description import load_any_launch_file
-from course_lib.launch.node import Node
-from course_lib.launch.parameters import write_params_file
-from course_lib.launch.running import output_destinations
-from course_lib.launch.runtime import where_in_launch_file
-from course_lib.launch.shim import MODULE_NAMES, launch_modules
+from course_lib.launch.command.cli import LaunchCommandError, parse_launch_arguments
+from course_lib.launch.command.describe import format_arguments
+from course_lib.launch.core.context import LaunchContext
+from course_lib.launch.core.description import load_any_launch_file
+from course_lib.launch.ros.node import Node
+from course_lib.launch.ros.parameters import write_params_file
+from course_lib.launch.runtime.process_runner import output_destinations
+from course_lib.launch.runtime.service import where_in_launch_file
+from course_lib.launch.runtime.shim import MODULE_NAMES, launch_modules
 
 FIXTURE = Path(__file__).resolve().parents[2] / "fixtures" / "launch_pkg" / "launch"
 

@@ -6,15 +6,7 @@ import shutil
 
 import pytest
 
-from course_lib.launch.context import LaunchContext
-from course_lib.launch.events import Shutdown
-from course_lib.launch.frontend import _cmdline
-from course_lib.launch.substitution import (
-    SubstitutionFailure,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
-from course_lib.launch.substitutions import (
+from course_lib.launch.api.substitutions import (
     Command,
     EnvironmentVariable,
     EqualsSubstitution,
@@ -25,6 +17,14 @@ from course_lib.launch.substitutions import (
     PathJoinSubstitution,
     PythonExpression,
 )
+from course_lib.launch.core.context import LaunchContext
+from course_lib.launch.core.events import Shutdown
+from course_lib.launch.core.substitution import (
+    SubstitutionFailure,
+    normalize_to_list_of_substitutions,
+    perform_substitutions,
+)
+from course_lib.launch.frontend.reader import _cmdline
 
 
 def _context(**configs: str) -> LaunchContext:
@@ -114,7 +114,7 @@ def test_frontend_command_line_keeps_substitutions_in_their_argument() -> None:
 
 
 def test_boolean_substitutions_read_launchs_booleans() -> None:
-    from course_lib.launch.logic_substitutions import (
+    from course_lib.launch.api.logic_substitutions import (
         AllSubstitution,
         AndSubstitution,
         AnySubstitution,
@@ -136,7 +136,7 @@ def test_boolean_substitutions_read_launchs_booleans() -> None:
 
 
 def test_frontend_boolean_and_equality_substitutions() -> None:
-    from course_lib.launch.frontend_substitutions import parse_substitution
+    from course_lib.launch.api.substitution_syntax import parse_substitution
 
     context = _context(v="0.25", use="true")
     text = "$(if $(and $(equals $(var v) 0.25) $(var use)) yes no)"

@@ -16,9 +16,9 @@ from course_lib.config.commented import commented_yaml
 from course_lib.config.course import CourseSettings, TravelExercise
 from course_lib.config.simulation import SimulationSettings, StartPose
 from course_lib.config.trip import MAX_TRAVEL_M, answer_trip, wrong_trip
-from course_lib.config_check import HEADERS, check_config, readme_rows
+from course_lib.core.paths import CONFIG_DIR, CONFIG_DIR_ENV, NOTEBOOKS_DIR, REPO_ROOT
 from course_lib.lessons.texts import TEMPLATES, render_cells, settings_used
-from course_lib.paths import CONFIG_DIR, CONFIG_DIR_ENV, NOTEBOOKS_DIR, REPO_ROOT
+from course_lib.tools.config_check import HEADERS, check_config, readme_rows
 
 
 def _config(tmp_path: Path, name: str, old: str, new: str) -> Path:
@@ -149,8 +149,8 @@ def test_the_shipped_comments_are_what_the_schema_writes() -> None:
 def test_the_readme_table_lists_every_setting_with_its_range() -> None:
     readme = (REPO_ROOT / "README.md").read_text()
     missing = [row for row in readme_rows() if row not in readme]
-    assert not missing, "README.md lacks these rows (from course_lib.config_check):\n" + "\n".join(
-        missing
+    assert not missing, (
+        "README.md lacks these rows (from course_lib.tools.config_check):\n" + "\n".join(missing)
     )
 
 

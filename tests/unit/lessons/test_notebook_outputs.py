@@ -7,8 +7,8 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from course_lib.notebook_outputs import IGNORE_TAG, clean_notebook
-from course_lib.paths import NOTEBOOKS_DIR
+from course_lib.core.paths import NOTEBOOKS_DIR
+from course_lib.tools.notebook_outputs import IGNORE_TAG, clean_notebook
 
 NOTEBOOKS = sorted(NOTEBOOKS_DIR.glob("[0-9][0-9]_*.ipynb"))
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from course_lib.machine.protocol import decode, encode, failure
-from course_lib.machine.register import node_name_from_log
+from course_lib.lab.protocol import decode, encode, failure
+from course_lib.lab.register import node_name_from_log
 
 
 def test_messages_round_trip_as_one_line() -> None:

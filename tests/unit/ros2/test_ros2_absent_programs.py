@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from course_lib.ros2.commands import run_collected
+from course_lib.ros2.command.commands import run_collected
 
 
 @pytest.mark.parametrize(

@@ -1,4 +1,4 @@
-"""Tripwires for the argparse behaviour course_lib.ros2.parsers relies on (issue 14, item 7).
+"""Tripwires for the argparse behaviour ros2.command.parsers relies on (issue 14, item 7).
 
 parsers.py overrides only public ArgumentParser methods, but it relies on argparse calling
 them for all of its output and exits, and on HelpFormatter's `width` argument. If a Python
@@ -11,8 +11,8 @@ import argparse
 
 import pytest
 
-from course_lib.ros2 import parsers
-from course_lib.ros2.commands import run_collected
+from course_lib.ros2.command import parsers
+from course_lib.ros2.command.commands import run_collected
 
 
 def _capture(width: int = 80) -> tuple[parsers._Sink, object]:

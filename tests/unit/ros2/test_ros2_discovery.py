@@ -7,9 +7,9 @@ from dataclasses import replace
 
 import pytest
 
-from course_lib.paths import PACKAGE_DIR
-from course_lib.ros2 import parsers
-from course_lib.ros2.discovery import (
+from course_lib.core.paths import PACKAGE_DIR
+from course_lib.ros2.command import parsers
+from course_lib.ros2.node.discovery import (
     DEFAULT_TIMING,
     NAME_WAIT_S,
     DiscoveryTiming,

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from course_lib.ros2.commands import run_collected
+from course_lib.ros2.command.commands import run_collected
 
 
 def test_missing_arguments_print_usage_and_exit_2() -> None:
@@ -47,7 +47,7 @@ def test_help_goes_to_stdout_with_exit_0() -> None:
 
 
 def test_accepts_the_real_tools_common_flags() -> None:
-    from course_lib.ros2 import parsers
+    from course_lib.ros2.command import parsers
 
     sink = parsers._Sink()
     token = parsers.output_sink.set(sink)

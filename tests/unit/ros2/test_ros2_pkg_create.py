@@ -8,7 +8,7 @@ from typing import Any
 
 import pytest
 
-from course_lib.ros2.commands import run_collected
+from course_lib.ros2.command.commands import run_collected
 
 GOLDEN = Path(__file__).resolve().parents[2] / "golden" / "pkg_create" / "cases.json"
 CASES = {case["case"]: case for case in json.loads(GOLDEN.read_text())}

@@ -6,7 +6,7 @@ import argparse
 
 from rclpy.qos import QoSReliabilityPolicy, qos_profile_sensor_data
 
-from course_lib.ros2.topic_qos import qos_from_args
+from course_lib.ros2.node.qos import qos_from_args
 
 
 def test_overrides_leave_the_shared_preset_alone() -> None:

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from course_lib.ros2 import table
-from course_lib.ros2.commands import run_collected
+from course_lib.ros2.command import table
+from course_lib.ros2.command.commands import run_collected
 
 ENTRIES = [
     (name, verb_name, verb)
@@ -115,8 +115,9 @@ def test_package_exports_are_not_shadowed_by_modules() -> None:
 
     import course_lib.ros2 as package
 
-    for info in pkgutil.iter_modules(package.__path__):
-        if info.name not in ("daemon",):  # `python -m course_lib.ros2.daemon` serves forever
-            importlib.import_module(f"course_lib.ros2.{info.name}")
+    for info in pkgutil.walk_packages(package.__path__, "course_lib.ros2."):
+        # `python -m course_lib.ros2.command.daemon` serves forever
+        if info.name != "course_lib.ros2.command.daemon":
+            importlib.import_module(info.name)
     for name in package.__all__:
         assert not isinstance(getattr(package, name), type(package)), name

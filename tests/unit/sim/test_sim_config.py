@@ -8,7 +8,7 @@ import pytest
 
 from course_lib.config import SimulationSettings, load_simulation_settings, parse_settings
 from course_lib.config.simulation import simulation_yaml
-from course_lib.errors import ConfigError
+from course_lib.core.errors import ConfigError
 
 SOURCE = "config/simulation.yaml"
 

@@ -7,9 +7,9 @@ import math
 import mujoco
 import pytest
 
-from course_lib.sim.frames import joint_transform, robot_frames
-from course_lib.sim.model import build_model
-from course_lib.sim.urdf import robot_urdf
+from course_lib.sim.ros.urdf import robot_urdf
+from course_lib.sim.world.frames import joint_transform, robot_frames
+from course_lib.sim.world.model import build_model
 
 
 @pytest.fixture(scope="module")

@@ -6,8 +6,8 @@ import math
 
 import pytest
 
-from course_lib.sim.kinematics import DiffDrive, quat_from_yaw, wrap_angle, yaw_from_quat
-from course_lib.sim.pacing import Pacer, Schedule
+from course_lib.sim.world.kinematics import DiffDrive, quat_from_yaw, wrap_angle, yaw_from_quat
+from course_lib.sim.world.pacing import Pacer, Schedule
 
 TB3 = DiffDrive(0.033, 0.287)
 

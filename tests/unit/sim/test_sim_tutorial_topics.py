@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from course_lib.sim.tutorial import compare_with_tutorial
+from course_lib.lessons.sim_tutorial import compare_with_tutorial
 
 # The list of what the course's `ros2 topic list` shows in the simulation.
 COURSE_TOPICS = [
