@@ -33,7 +33,7 @@ LAB_BASHRC = PACKAGE_DIR / "shell" / "lab_bashrc.bash"
 
 
 LAB_SETTINGS_DIR = PACKAGE_DIR / "lab_settings"
-LAB_EXTENSIONS_DIR = Path(__file__).parent / "lab_extensions"
+LAB_EXTENSIONS_DIR = PACKAGE_DIR / "lab_extensions"
 
 
 def course_server_options() -> list[str]:
@@ -47,7 +47,7 @@ def course_server_options() -> list[str]:
         f"--LabApp.app_settings_dir={LAB_SETTINGS_DIR}",
         f"--LabApp.extra_labextensions_path={LAB_EXTENSIONS_DIR}",
         # a saved notebook keeps no live 3D view or widget (they would show errors reopened)
-        "--ContentsManager.pre_save_hook=course_lib.notebook.live_outputs.scrub_on_save",
+        "--ContentsManager.pre_save_hook=course_lib.core.live_outputs.scrub_on_save",
     ]
 
 

@@ -248,7 +248,7 @@ class Lesson:
     def self_check(self) -> SelfCheck:
         """Run this lesson's self-check: what passed, and what to try for what did not."""
         from .checks import run_checks
-        from .progress_report import report_progress
+        from .progress.client import report_progress
 
         result = SelfCheck.of(self.number, run_checks(self))
         report_progress(result)  # on a hub only; never raises, never waits

@@ -24,9 +24,9 @@ from pathlib import Path
 from typing import Any
 
 from ..config.course import CourseSettings
+from ..core.live_outputs import scrub_live_outputs
 from ..core.paths import CONFIG_DIR_ENV, NOTEBOOKS_DIR, REPO_ROOT
 from ..lessons.texts import METADATA_KEY, render_cells
-from ..notebook.live_outputs import scrub_live_outputs
 from .testing import TEST_ENV
 
 __all__ = ["clean_notebook", "refresh_notebook", "refresh_notebooks", "sanitize_rules"]

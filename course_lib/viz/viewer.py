@@ -18,7 +18,7 @@ import re
 from typing import Any
 
 from ..core.errors import ProcessStartError
-from ..notebook.live_outputs import LIVE_MARK
+from ..core.live_outputs import LIVE_MARK
 
 __all__ = ["Viewer", "viewer_url"]
 

@@ -17,14 +17,7 @@ from contextlib import contextmanager
 from importlib.machinery import ModuleSpec
 from typing import Any
 
-from ..api import (
-    actions,
-    conditions,
-    event_actions,
-    logic_substitutions,
-    process,
-    substitutions,
-)
+from ..api import actions, conditions, event_actions, logic_substitutions, process, substitutions
 from ..core import (
     context,
     description,

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import queue
 import shlex
-import threading
 from collections.abc import Sequence
 from typing import Any
 
 from ..command.commands import run_collected
+from ..node.session_client import client
 from ..paramfile import ParamFileError, read_param_file
 from ..render import dump_tree
 from ..results import CommandOutput, Descriptor, NodeInfo, SetResult, TopicInfo
@@ -31,22 +31,6 @@ __all__ = [
     "topic_echo_once",
     "topic_list",
 ]
-
-_lock = threading.Lock()
-_cached: tuple[Any, Any] | None = None  # (session, RosClient)
-
-
-def client() -> Any:
-    """Return the RosClient over the current session's node (re-made after a new session)."""
-    global _cached
-    from ...session.session import get_session
-    from ..node.client import RosClient
-
-    session = get_session()
-    with _lock:
-        if _cached is None or _cached[0] is not session:
-            _cached = (session, RosClient(session.node, session.wait_future))
-        return _cached[1]
 
 
 def ros2(command: str | Sequence[str], *, cwd: str | None = None) -> CommandOutput:

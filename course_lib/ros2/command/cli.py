@@ -86,7 +86,7 @@ def _own_node_options(argv: list[str]) -> tuple[bool, bool]:
 
 
 def _in_process_client():  # type: ignore[no-untyped-def]
-    from course_lib.ros2.api.nodes_and_params import client
+    from course_lib.ros2.node.session_client import client
 
     return client()
 

@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from course_lib.hub.progress.record import (
+from course_lib.lessons.progress.record import (
     MAX_FAILED_CHARS,
     Record,
     RecordError,

@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.hub.progress.record import Record
 from course_lib.hub.progress.store import ProgressStore, StoreError
+from course_lib.lessons.progress.record import Record
 
 T0 = datetime(2026, 11, 23, 19, 0, tzinfo=UTC)
 

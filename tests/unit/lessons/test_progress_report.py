@@ -11,8 +11,8 @@ from collections.abc import Iterator
 
 import pytest
 
-from course_lib.lessons import progress_report
-from course_lib.lessons.progress_report import TIMEOUT_S, report_progress
+from course_lib.lessons.progress import client as progress_report
+from course_lib.lessons.progress.client import TIMEOUT_S, report_progress
 from course_lib.lessons.report import SelfCheck, check
 
 CHECK = SelfCheck.of(

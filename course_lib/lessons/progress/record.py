@@ -1,7 +1,8 @@
 """What a self-check posts to the progress service, and how its JSON is checked (pure).
 
 The one place the wire format is written down: the lessons' client builds the body with
-`record_body`, the service reads it with `parse_record`.
+`record_body`; the hub's progress service (course_lib.hub.progress), which implements the other
+side of this contract, reads it with `parse_record`.
 """
 
 from __future__ import annotations
@@ -10,9 +11,20 @@ import json
 from dataclasses import dataclass
 from typing import Any
 
-from . import LESSONS
+# The environment variable that tells a learner's server (and so its kernels) where to post:
+# the service's direct URL, http://127.0.0.1:<port>/services/course-progress/. The hub sets it.
+PROGRESS_URL_ENV = "COURSE_PROGRESS_URL"
+LESSONS = range(1, 12)  # the lessons a record may name: 1 to 11
 
-__all__ = ["MAX_FAILED_CHARS", "Record", "RecordError", "parse_record", "record_body"]
+__all__ = [
+    "LESSONS",
+    "MAX_FAILED_CHARS",
+    "PROGRESS_URL_ENV",
+    "Record",
+    "RecordError",
+    "parse_record",
+    "record_body",
+]
 
 MAX_FAILED_CHARS = 500  # the client cuts the failed check's text to this
 _FIELDS = {"user": str, "lesson": int, "passed": bool, "failed": str}

@@ -15,11 +15,10 @@ import sys
 import threading
 import urllib.error
 import urllib.request
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
+from typing import Protocol
 
-from ..hub.progress import PROGRESS_URL_ENV
-from ..hub.progress.record import Record, record_body
-from .report import SelfCheck
+from .record import PROGRESS_URL_ENV, Record, record_body
 
 __all__ = ["TIMEOUT_S", "report_progress", "send_record"]
 
@@ -27,7 +26,20 @@ TIMEOUT_S = 2.0
 _warned = threading.Event()  # one line per kernel, not one per self-check
 
 
-def _record(check: SelfCheck, user: str) -> Record:
+class _Check(Protocol):
+    what: str
+    passed: bool
+
+
+class SelfCheckResult(Protocol):
+    """What the client needs of a lesson's self-check (course_lib.lessons.report.SelfCheck)."""
+
+    lesson: int
+    passed: bool
+    checks: Sequence[_Check]
+
+
+def _record(check: SelfCheckResult, user: str) -> Record:
     failed = next((c.what for c in check.checks if not c.passed), "")
     return Record(user=user, lesson=check.lesson, passed=check.passed, failed=failed)
 
@@ -74,7 +86,7 @@ def _send_failed(error: Exception) -> None:
 
 
 def report_progress(
-    check: SelfCheck, environ: Mapping[str, str] | None = None
+    check: SelfCheckResult, environ: Mapping[str, str] | None = None
 ) -> threading.Thread | None:
     """Send `check` to the progress service in a daemon thread; None outside a hub.
 
