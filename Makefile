@@ -41,8 +41,8 @@ check-config: setup  ## Check every file of config/, alone and together (ARGS="-
 smoke-python:  ## Prove CPython 3.12 as well: fresh venv, environment.txt, rclpy + MuJoCo smoke
 	scripts/smoke_python.sh $(SMOKE_PYTHON)
 
-lint: setup  ## ruff lint and format check
-	$(VENV)/bin/ruff check . && $(VENV)/bin/ruff format --check .
+lint: setup  ## ruff lint and format check; the layers contract (imports only point down)
+	$(VENV)/bin/ruff check . && $(VENV)/bin/ruff format --check . && $(VENV)/bin/lint-imports --no-cache
 
 format: setup
 	$(VENV)/bin/ruff format . && $(VENV)/bin/ruff check --fix .

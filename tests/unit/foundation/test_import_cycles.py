@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[3] / "course_lib"
-PACKAGES = ("ros2", "launch", "machine", "sim", "lessons", "viz", "widgets", ".")
+PACKAGES = ("ros2", "launch", "lab", "sim", "lessons", "viz", "notebook", ".")
 
 
 def _module_name(path: Path, root: Path) -> str:
@@ -77,6 +77,29 @@ def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
     return None
 
 
+def folder_graph(root: Path) -> dict[str, set[str]]:
+    """Return folder -> folders it imports from (every folder of course_lib, at every depth).
+
+    A package's __init__ importing from its own subfolders is not an edge: it is the folder's
+    front door, not a dependency between folders.
+    """
+    graph = graph_of(root, ".")
+    packages = {m for m in graph if (root.parent / m.replace(".", "/")).is_dir()}
+
+    def folder(module: str) -> str:
+        return module if module in packages else module.rpartition(".")[0]
+
+    folders: dict[str, set[str]] = {}
+    for module, targets in graph.items():
+        here = folder(module)
+        for target in targets:
+            there = folder(target)
+            if there == here or (module in packages and there.startswith(module + ".")):
+                continue
+            folders.setdefault(here, set()).add(there)
+    return folders
+
+
 @pytest.mark.parametrize("package", PACKAGES)
 def test_package_has_no_import_cycle(package: str) -> None:
     cycle = find_cycle(graph_of(ROOT, package))
@@ -98,3 +121,22 @@ def test_a_cycle_is_found(tmp_path: Path) -> None:
     ]
     (pkg / "c.py").write_text("import json\n")
     assert find_cycle(graph_of(tmp_path / "course_lib", "demo")) is None
+
+
+def test_no_cycle_between_folders() -> None:
+    cycle = find_cycle(folder_graph(ROOT))
+    assert cycle is None, "import cycle between folders: " + " -> ".join(cycle or [])
+
+
+def test_a_cycle_between_folders_is_found(tmp_path: Path) -> None:
+    root = tmp_path / "course_lib"
+    for folder in ("low", "high"):
+        (root / folder).mkdir(parents=True)
+        (root / folder / "__init__.py").write_text("")
+    (root / "__init__.py").write_text("")
+    (root / "high" / "a.py").write_text("from ..low import b\n")
+    (root / "low" / "b.py").write_text("def f():\n    from ..high.a import x\n")
+    assert find_cycle(folder_graph(root)) in (
+        ["course_lib.high", "course_lib.low", "course_lib.high"],
+        ["course_lib.low", "course_lib.high", "course_lib.low"],
+    )
