@@ -12,7 +12,8 @@ import sys
 import time
 
 from course_lib.core.paths import NOTEBOOKS_DIR, REPO_ROOT
-from course_lib.tools.testing import TEST_ENV, pytest_argv
+from course_lib.tools.suite import pytest_argv
+from course_lib.tools.testing import TEST_ENV
 
 
 def main() -> None:

@@ -44,7 +44,7 @@ def _hub_lab(args: argparse.Namespace) -> int:
 
 
 def _test(args: argparse.Namespace) -> int:
-    from .testing import run_tests
+    from .suite import run_tests
 
     return run_tests(args.extra)
 
@@ -91,7 +91,7 @@ def _doctor(_args: argparse.Namespace) -> int:
 
 
 def _stop(_args: argparse.Namespace) -> int:
-    from .doctor import stop_all
+    from .stop import stop_all
 
     report = stop_all()
     print(report.render())

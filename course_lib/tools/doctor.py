@@ -1,4 +1,4 @@
-"""`make doctor` and `make stop`: what is installed, what runs, and stopping it all."""
+"""`make doctor`: what is installed, what is stale and what runs (it changes nothing)."""
 
 from __future__ import annotations
 
@@ -12,9 +12,8 @@ from pathlib import Path
 from ..core import ament
 from ..core.paths import REPO_ROOT
 from ..processes.ownership import course_processes
-from ..processes.stopping import StopReport, stop_course
 
-__all__ = ["report", "stale_steps", "stop_all"]
+__all__ = ["report", "stale_steps"]
 
 # The Makefile's set-up steps: its target, and what `make setup` would do when it is stale.
 _SETUP_STEPS = (
@@ -29,11 +28,6 @@ _DISTRIBUTIONS = (
     "meshcat",
     "jupyterlab",
 )
-
-
-def stop_all() -> StopReport:
-    """Stop this user's course processes: SIGINT, SIGTERM, SIGKILL (see stopping.py)."""
-    return stop_course()
 
 
 def _version(dist: str) -> str:

@@ -1,17 +1,17 @@
-"""`make test`: the whole suite (unit, integration, notebooks, browser) in one pytest run."""
+"""What tests share: the environment the runner fixes, and goldens adjusted to the course.
+
+The runner itself (`make test`) is course_lib.tools.suite.
+"""
 
 from __future__ import annotations
 
 import os
-import subprocess
-import sys
 
-from ..core.paths import NOTEBOOKS_DIR, REPO_ROOT
 from ..processes.children import NAME_ENV, OWNER_ENV, OWNER_NS_ENV
 from ..processes.domain import DOMAIN_ENV
 from ..session.session import SESSION_DOMAIN_ENV
 
-__all__ = ["TEST_ENV", "independent_env", "pytest_argv", "run_tests"]
+__all__ = ["TEST_ENV", "independent_env", "with_course_interfaces", "with_course_services"]
 
 # What the runner fixes so that checked outputs never depend on the machine.
 TEST_ENV = {
@@ -32,42 +32,6 @@ def independent_env(**extra: str) -> dict[str, str]:
     own = (DOMAIN_ENV, SESSION_DOMAIN_ENV, OWNER_ENV, OWNER_NS_ENV, NAME_ENV, "COURSE_LAB")
     env = {k: v for k, v in os.environ.items() if k not in own}
     return {**env, **TEST_ENV, **extra}
-
-
-def pytest_argv(extra: list[str]) -> list[str]:
-    """Return the pytest command line: tests/ and every notebook, two workers."""
-    workers = "2" if (os.cpu_count() or 1) >= 2 else "0"
-    notebooks = ["notebooks"] if any(NOTEBOOKS_DIR.glob("*.ipynb")) else []
-    return [
-        sys.executable,
-        "-m",
-        "pytest",
-        "tests",
-        *notebooks,
-        "--nbval-lax",
-        "--nbval-sanitize-with",
-        "tests/nbval_sanitize.cfg",
-        "-n",
-        workers,
-        "--dist",
-        "loadfile",
-        # Tests of real processes on 2 busy cores: one that fails is run again (up to twice)
-        # and reported as a rerun, so an intermittent failure stays visible in the summary.
-        "--reruns",
-        "2",
-        "--reruns-delay",
-        "1",
-        *extra,
-    ]
-
-
-def run_tests(extra: list[str]) -> int:
-    """Run the suite with the test environment; return pytest's exit code."""
-    env = {**os.environ, **TEST_ENV}
-    code = subprocess.run(pytest_argv(extra), cwd=REPO_ROOT, env=env, check=False).returncode
-    if code == 5:
-        print("pytest collected no tests: the suite is missing.", file=sys.stderr)
-    return code
 
 
 def with_course_interfaces(packages_stdout: str) -> str:
