@@ -62,7 +62,6 @@ def _interface(name: str, doc: str) -> Verb:
     return Verb(doc, f"verbs.interface:{name}", arguments, graph=False)
 
 
-_A = "verbs.verb_args"
 _T = "verbs.topic:"
 COMMANDS: dict[str, Command] = {
     "daemon": Command(
@@ -71,7 +70,7 @@ COMMANDS: dict[str, Command] = {
             "start": Verb(
                 "Start the daemon if it isn't running",
                 "verbs.daemon:daemon_start",
-                f"{_A}:daemon_start",
+                "verbs.daemon:daemon_start_arguments",
                 graph=False,
             ),
             "status": Verb(
@@ -101,37 +100,51 @@ COMMANDS: dict[str, Command] = {
         "Various node related sub-commands",
         {
             "info": Verb(
-                "Output information about a node", "verbs.param:node_info", f"{_A}:node_info"
+                "Output information about a node",
+                "verbs.node:node_info",
+                "verbs.node:node_info_arguments",
             ),
             "list": Verb(
-                "Output a list of available nodes", "verbs.param:node_list", f"{_A}:node_list"
+                "Output a list of available nodes",
+                "verbs.node:node_list",
+                "verbs.node:node_list_arguments",
             ),
         },
     ),
     "param": Command(
         "Various param related sub-commands",
         {
-            "delete": Verb("Delete parameter", "verbs.param:param_delete", f"{_A}:param_delete"),
+            "delete": Verb(
+                "Delete parameter",
+                "verbs.param:param_delete",
+                "verbs.param:param_delete_arguments",
+            ),
             "describe": Verb(
                 "Show descriptive information about declared parameters",
                 "verbs.param:param_describe",
-                f"{_A}:param_describe",
+                "verbs.param:param_describe_arguments",
             ),
             "dump": Verb(
                 "Show all of the parameters of a node in a YAML file format",
                 "verbs.param:param_dump",
-                f"{_A}:param_dump",
+                "verbs.param:param_dump_arguments",
             ),
-            "get": Verb("Get parameter", "verbs.param:param_get", f"{_A}:param_get"),
+            "get": Verb(
+                "Get parameter", "verbs.param:param_get", "verbs.param:param_get_arguments"
+            ),
             "list": Verb(
                 "Output a list of available parameters",
                 "verbs.param:param_list",
-                f"{_A}:param_list",
+                "verbs.param:param_list_arguments",
             ),
             "load": Verb(
-                "Load parameter file for a node", "verbs.param:param_load", f"{_A}:param_load"
+                "Load parameter file for a node",
+                "verbs.param:param_load",
+                "verbs.param:param_load_arguments",
             ),
-            "set": Verb("Set parameter", "verbs.param:param_set", f"{_A}:param_set"),
+            "set": Verb(
+                "Set parameter", "verbs.param:param_set", "verbs.param:param_set_arguments"
+            ),
         },
     ),
     "pkg": Command(
@@ -141,13 +154,13 @@ COMMANDS: dict[str, Command] = {
             "executables": Verb(
                 "Output a list of package specific executables",
                 "verbs.pkg.executables:pkg_executables",
-                f"{_A}:pkg_executables",
+                "verbs.pkg.executables:pkg_executables_arguments",
                 graph=False,
             ),
             "prefix": Verb(
                 "Output the prefix path of a package",
                 "verbs.pkg.executables:pkg_prefix",
-                f"{_A}:pkg_prefix",
+                "verbs.pkg.executables:pkg_prefix_arguments",
                 graph=False,
             ),
         },
@@ -157,7 +170,7 @@ COMMANDS: dict[str, Command] = {
         own=Verb(
             "Run a package specific executable",
             "verbs.pkg.executables:run",
-            f"{_A}:run",
+            "verbs.pkg.executables:run_arguments",
             graph=False,
         ),
     ),
@@ -191,7 +204,9 @@ COMMANDS: dict[str, Command] = {
         {
             "bw": Verb("Display bandwidth used by topic", "verbs.topic:bw", _T + "bw_arguments"),
             "echo": Verb(
-                "Output messages from a topic", "verbs.topic_stream:topic_echo", f"{_A}:topic_echo"
+                "Output messages from a topic",
+                "verbs.topic_stream:topic_echo",
+                "verbs.topic_stream:topic_echo_arguments",
             ),
             "find": Verb(
                 "Output a list of available topics of a given type",
@@ -201,18 +216,20 @@ COMMANDS: dict[str, Command] = {
             "hz": Verb(
                 "Print the average publishing rate to screen",
                 "verbs.topic_stream:topic_hz",
-                f"{_A}:topic_hz",
+                "verbs.topic_stream:topic_hz_arguments",
             ),
             "info": Verb(
                 "Print information about a topic", "verbs.topic:info", _T + "info_arguments"
             ),
             "list": Verb(
-                "Output a list of available topics", "verbs.param:topic_list", f"{_A}:topic_list"
+                "Output a list of available topics",
+                "verbs.topic:topic_list",
+                "verbs.topic:topic_list_arguments",
             ),
             "pub": Verb("Publish a message to a topic", "verbs.topic_pub"),
             "type": Verb("Print a topic's type", "verbs.topic:type_", _T + "type_arguments"),
         },
-        leading=f"{_A}:topic_command",
+        leading="verbs.topic:topic_command_arguments",
     ),
 }
 

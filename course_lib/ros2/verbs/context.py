@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import argparse
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..node.discovery import requested_spin_time
 from .console import Console
 
-__all__ = ["Context"]
+__all__ = ["Context", "SimTimeUnavailable", "settled_client"]
 
 
 @dataclass
@@ -30,3 +32,22 @@ class Context:
                 raise RuntimeError("this door has no ROS client")
             self._client = self.client_factory()
         return self._client
+
+
+class SimTimeUnavailable(RuntimeError):
+    """`--use-sim-time` asked of a door whose shared node runs on wall time."""
+
+    cli_message = (
+        "--use-sim-time needs a node of this command's own: run the command in a terminal "
+        "(a JupyterLab terminal, or `!ros2 ...` in a cell); the cells' `%ros2` commands "
+        "share one node on wall time."
+    )
+
+
+def settled_client(args: argparse.Namespace, ctx: Context) -> Any:
+    """Return the client once it has discovered the whole graph (`--spin-time` at least)."""
+    client = ctx.client
+    if getattr(args, "use_sim_time", False) and not client.uses_sim_time:
+        raise SimTimeUnavailable()
+    client.settle(min_age_s=requested_spin_time(args))
+    return client

@@ -9,7 +9,7 @@ from typing import Any
 from ..node.connect import daemon_running, start_detached, stop_daemon
 from .context import Context
 
-__all__ = ["daemon_start", "daemon_status", "daemon_stop"]
+__all__ = ["daemon_start", "daemon_start_arguments", "daemon_status", "daemon_stop"]
 
 NO_DOMAIN = (
     "ros2 daemon: this shell sets no ROS_DOMAIN_ID and no course lab is running, so the "
@@ -64,3 +64,8 @@ def daemon_stop(args: argparse.Namespace, ctx: Context) -> Any:
         return str(exc)
     ctx.console.out("The daemon has been stopped\n" if stopped else "The daemon is not running\n")
     return 0
+
+
+def daemon_start_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of `ros2 daemon start`."""
+    parser.add_argument("--debug", "-d", action="store_true", help="Print debug messages")

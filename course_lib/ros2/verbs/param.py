@@ -1,4 +1,4 @@
-"""The `ros2 node`, `ros2 topic list` and `ros2 param` verbs: ask the graph, render, print."""
+"""`ros2 param list|get|set|describe|dump|load|delete`: the arguments and the handlers."""
 
 from __future__ import annotations
 
@@ -6,24 +6,30 @@ import argparse
 from typing import Any
 
 from .. import render
-from ..node.discovery import requested_spin_time
 from ..paramfile import ParamFileError, read_param_file
 from ..results import ParamListing, node_name_of
 from ..values import NOT_SET, ParamValue, parse_value
-from .context import Context
+from . import options
+from .context import Context, settled_client
 
 __all__ = [
-    "node_info",
-    "node_list",
     "param_delete",
+    "param_delete_arguments",
     "param_describe",
+    "param_describe_arguments",
     "param_dump",
+    "param_dump_arguments",
     "param_get",
+    "param_get_arguments",
     "param_list",
+    "param_list_arguments",
     "param_load",
+    "param_load_arguments",
     "param_set",
-    "topic_list",
+    "param_set_arguments",
 ]
+
+Parser = argparse.ArgumentParser
 
 NODE_NOT_FOUND = "Node not found"
 LIST_SERVICE_WAIT_S = 2.0
@@ -33,25 +39,6 @@ def _absolute(name: str) -> str:
     return name if name.startswith("/") else "/" + name
 
 
-class SimTimeUnavailable(RuntimeError):
-    """`--use-sim-time` asked of a door whose shared node runs on wall time."""
-
-    cli_message = (
-        "--use-sim-time needs a node of this command's own: run the command in a terminal "
-        "(a JupyterLab terminal, or `!ros2 ...` in a cell); the cells' `%ros2` commands "
-        "share one node on wall time."
-    )
-
-
-def _settled(args: argparse.Namespace, ctx: Context) -> Any:
-    """Return the client once it has discovered the whole graph (`--spin-time` at least)."""
-    client = ctx.client
-    if getattr(args, "use_sim_time", False) and not client.uses_sim_time:
-        raise SimTimeUnavailable()
-    client.settle(min_age_s=requested_spin_time(args))
-    return client
-
-
 def _find_node(args: argparse.Namespace, ctx: Context) -> str | None:
     """Return the node's absolute name once the graph shows it, else None."""
     name = _absolute(args.node_name)
@@ -59,58 +46,6 @@ def _find_node(args: argparse.Namespace, ctx: Context) -> str | None:
         name, include_hidden=args.include_hidden_nodes, timeout=args.timeout
     )
     return name if found else None
-
-
-def node_list(args: argparse.Namespace, ctx: Context) -> int:
-    """`ros2 node list [-a] [-c]`."""
-    names = _settled(args, ctx).node_names(include_hidden=args.all)
-    if not names and not args.count_nodes:
-        return 0
-    return ctx.console.emit(
-        render.node_list([n.full_name for n in names], count_only=args.count_nodes)
-    )
-
-
-def node_info(args: argparse.Namespace, ctx: Context) -> Any:
-    """`ros2 node info <node>`."""
-    client = _settled(args, ctx)
-
-    def count() -> int:
-        names = client.node_names(include_hidden=args.include_hidden)
-        return [n.full_name for n in names].count(args.node_name)
-
-    if count() == 0 and args.node_name.startswith("/"):
-        client.wait_for_node(args.node_name, include_hidden=args.include_hidden, timeout=0)
-    duplicates = count()
-    if duplicates == 0:
-        return f"Unable to find node '{args.node_name}'"
-    info = client.node_info(args.node_name, include_hidden=args.include_hidden)
-    return ctx.console.emit(render.node_info(info, duplicates=duplicates))
-
-
-def topic_list(args: argparse.Namespace, ctx: Context) -> int:
-    """`ros2 topic list [-t] [-c] [-v]`."""
-    client = _settled(args, ctx)
-    topics = client.topics(include_hidden=args.include_hidden_topics)
-    if args.count_topics:
-        return ctx.console.emit(render.topic_list(topics, count_only=True))
-    if not topics:
-        return 0
-    if args.verbose:
-        node = client.node
-        for publishers in (True, False):
-            lines = ["Published topics:" if publishers else "Subscribed topics:"]
-            for topic in topics:
-                n = (node.count_publishers if publishers else node.count_subscribers)(topic.name)
-                if n:
-                    kind = "publisher" if publishers else "subscriber"
-                    lines.append(
-                        f" * {topic.name} [{', '.join(topic.types)}] {n} {kind}"
-                        + ("s" if n > 1 else "")
-                    )
-            ctx.console.out("\n".join(lines) + "\n\n")
-        return 0
-    return ctx.console.emit(render.topic_list(topics, show_types=args.show_types))
 
 
 def _listing(ctx: Context, node: Any, args: argparse.Namespace, wait: float) -> ParamListing:
@@ -126,7 +61,7 @@ def _listing(ctx: Context, node: Any, args: argparse.Namespace, wait: float) -> 
 
 def param_list(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 param list [node] [--filter R] [--param-prefixes P..] [--param-type]`."""
-    client = _settled(args, ctx)
+    client = settled_client(args, ctx)
     nodes = client.node_names(include_hidden=args.include_hidden_nodes)
     if args.node_name:
         name = _absolute(args.node_name)
@@ -219,3 +154,75 @@ def param_load(args: argparse.Namespace, ctx: Context) -> Any:
         return ctx.console.emit(exc.output)
     results = ctx.client.set_parameters(node, values) if values else []
     return ctx.console.emit(render.param_load(results))
+
+
+def param_list_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 param list`."""
+    options.strategy(parser)
+    parser.add_argument("node_name", nargs="?", help="Name of the ROS node")
+    parser.add_argument(
+        "--filter",
+        nargs=1,
+        help="Only parameters matching the regex expression will be showed. Supports `re` "
+        "regex syntax.",
+    )
+    parser.add_argument(
+        "--include-hidden-nodes", action="store_true", help="Consider hidden nodes as well"
+    )
+    parser.add_argument(
+        "--param-prefixes",
+        nargs="+",
+        default=[],
+        help="Only list parameters with the provided prefixes",
+    )
+    parser.add_argument(
+        "--param-type", action="store_true", help="Print parameter types with parameter names"
+    )
+
+
+def param_get_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 param get`."""
+    options.node_and_hidden(parser)
+    parser.add_argument("parameter_name", help="Name of the parameter")
+    parser.add_argument("--hide-type", action="store_true", help="Hide the type information")
+    options.timeout(parser)
+
+
+def param_set_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 param set`."""
+    options.node_and_hidden(parser)
+    parser.add_argument("parameter_name", help="Name of the parameter")
+    parser.add_argument("value", help="Value of the parameter")
+    options.timeout(parser)
+
+
+def param_describe_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 param describe`."""
+    options.node_and_hidden(parser)
+    parser.add_argument("parameter_names", nargs="+", help="Names of the parameters")
+    options.timeout(parser)
+
+
+def param_dump_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 param dump`."""
+    options.node_and_hidden(parser)
+    options.timeout(parser)
+
+
+def param_load_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 param load`."""
+    options.node_and_hidden(parser)
+    parser.add_argument("parameter_file", help="Parameter file")
+    parser.add_argument(
+        "--no-use-wildcard",
+        action="store_true",
+        help="Do not load parameters in the '/**' namespace into the node",
+    )
+    options.timeout(parser)
+
+
+def param_delete_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 param delete`."""
+    options.node_and_hidden(parser)
+    parser.add_argument("parameter_name", help="Name of the parameter")
+    options.timeout(parser)

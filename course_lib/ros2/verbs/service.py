@@ -6,7 +6,7 @@ import argparse
 from typing import Any
 
 from ..node.graph import lookup, services
-from . import verb_args
+from . import options
 from .context import Context
 
 __all__ = [
@@ -33,7 +33,7 @@ def command_arguments(parser: Parser) -> None:
 
 def list_arguments(parser: Parser) -> None:
     """Arguments of `ros2 service list`."""
-    verb_args.strategy(parser)
+    options.strategy(parser)
     parser.add_argument(
         "-t", "--show-types", action="store_true", help="Additionally show the service type"
     )
@@ -62,7 +62,7 @@ def find_arguments(parser: Parser) -> None:
 
 def info_arguments(parser: Parser) -> None:
     """Arguments of `ros2 service info`."""
-    verb_args.strategy(parser)
+    options.strategy(parser)
     parser.add_argument(
         "service_name", help="Name of the ROS service to get info (e.g. '/add_two_ints')"
     )

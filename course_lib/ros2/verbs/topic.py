@@ -1,4 +1,4 @@
-"""`ros2 topic info [-v]|type|find [-c]|bw` (ros2topic 0.32.2's arguments and output)."""
+"""`ros2 topic list|info [-v]|type|find [-c]|bw` (ros2topic 0.32.2's arguments and output)."""
 
 from __future__ import annotations
 
@@ -7,10 +7,11 @@ import threading
 import time
 from typing import Any
 
+from .. import render
 from ..node.discovery import NAME_WAIT_S, UNKNOWN_NODE
 from ..node.graph import lookup
-from . import verb_args
-from .context import Context
+from . import options
+from .context import Context, settled_client
 
 __all__ = [
     "bw",
@@ -19,6 +20,9 @@ __all__ = [
     "find_arguments",
     "info",
     "info_arguments",
+    "topic_command_arguments",
+    "topic_list",
+    "topic_list_arguments",
     "topics",
     "type_",
     "type_arguments",
@@ -30,7 +34,7 @@ _POLL_S = 0.1
 
 def info_arguments(parser: Parser) -> None:
     """Arguments of `ros2 topic info`."""
-    verb_args.strategy(parser)
+    options.strategy(parser)
     parser.add_argument("topic_name", help="Name of the ROS topic to get info (e.g. '/chatter')")
     parser.add_argument(
         "--verbose",
@@ -43,13 +47,13 @@ def info_arguments(parser: Parser) -> None:
 
 def type_arguments(parser: Parser) -> None:
     """Arguments of `ros2 topic type`."""
-    verb_args.strategy(parser)
+    options.strategy(parser)
     parser.add_argument("topic_name", help="Name of the ROS topic to get type (e.g. '/chatter')")
 
 
 def find_arguments(parser: Parser) -> None:
     """Arguments of `ros2 topic find`."""
-    verb_args.strategy(parser)
+    options.strategy(parser)
     parser.add_argument(
         "topic_type",
         help="Name of the ROS topic type to filter for (e.g. 'std_msg/msg/String')",
@@ -71,12 +75,12 @@ def bw_arguments(parser: Parser) -> None:
     parser.add_argument(
         "--window",
         "-w",
-        type=verb_args.positive_int,
+        type=options.positive_int,
         default=100,
         help="maximum window size, in # of messages, for calculating rate (default: 100)",
         metavar="WINDOW",
     )
-    verb_args.direct(parser)
+    options.direct(parser)
 
 
 def topics(ctx: Context, *, include_hidden: bool) -> list[tuple[str, list[str]]]:
@@ -202,3 +206,55 @@ def bw(args: argparse.Namespace, ctx: Context) -> Any:
     finally:
         node.destroy_subscription(sub)
     return 2
+
+
+def topic_command_arguments(parser: Parser) -> None:
+    """The option `ros2 topic` itself takes before its verb."""
+    parser.add_argument(
+        "--include-hidden-topics", action="store_true", help="Consider hidden topics as well"
+    )
+
+
+def topic_list_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 topic list`."""
+    options.strategy(parser)
+    parser.add_argument(
+        "-t", "--show-types", action="store_true", help="Additionally show the topic type"
+    )
+    parser.add_argument(
+        "-c",
+        "--count-topics",
+        action="store_true",
+        help="Only display the number of topics discovered",
+    )
+    parser.add_argument(
+        "--include-hidden-topics", action="store_true", help="Consider hidden topics as well"
+    )
+    parser.add_argument(
+        "-v", "--verbose", action="store_true", help="List full details about each topic"
+    )
+
+
+def topic_list(args: argparse.Namespace, ctx: Context) -> int:
+    """`ros2 topic list [-t] [-c] [-v]`."""
+    client = settled_client(args, ctx)
+    topics = client.topics(include_hidden=args.include_hidden_topics)
+    if args.count_topics:
+        return ctx.console.emit(render.topic_list(topics, count_only=True))
+    if not topics:
+        return 0
+    if args.verbose:
+        node = client.node
+        for publishers in (True, False):
+            lines = ["Published topics:" if publishers else "Subscribed topics:"]
+            for topic in topics:
+                n = (node.count_publishers if publishers else node.count_subscribers)(topic.name)
+                if n:
+                    kind = "publisher" if publishers else "subscriber"
+                    lines.append(
+                        f" * {topic.name} [{', '.join(topic.types)}] {n} {kind}"
+                        + ("s" if n > 1 else "")
+                    )
+            ctx.console.out("\n".join(lines) + "\n\n")
+        return 0
+    return ctx.console.emit(render.topic_list(topics, show_types=args.show_types))

@@ -12,7 +12,7 @@ from typing import Any
 import yaml
 
 from ..msgfill import import_type, set_message_fields
-from . import verb_args
+from . import options
 from .context import Context
 
 __all__ = ["add_arguments", "main"]
@@ -44,7 +44,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "-r",
         "--rate",
         metavar="N",
-        type=verb_args.positive_float,
+        type=options.positive_float,
         default=1.0,
         help="Publishing rate in Hz (default: 1)",
     )
@@ -75,7 +75,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--max-wait-time-secs",
-        type=verb_args.positive_float,
+        type=options.positive_float,
         default=None,
         help="This sets the maximum wait time in seconds if --wait-until-matching-subscriptions "
         "is set. By default, this flag is not set meaning the subscriber will wait endlessly.",
@@ -83,13 +83,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--keep-alive",
         metavar="N",
-        type=verb_args.positive_float,
+        type=options.positive_float,
         default=0.1,
         help="Keep publishing node alive for N seconds after the last msg (default: 0.1)",
     )
     parser.add_argument("-n", "--node-name", help="Name of the created publishing node")
-    verb_args.qos(parser, "publish", "default")
-    verb_args.direct(parser)
+    options.qos(parser, "publish", "default")
+    options.direct(parser)
 
 
 @contextmanager

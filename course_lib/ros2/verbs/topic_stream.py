@@ -10,9 +10,10 @@ from typing import Any
 
 from ..msgyaml import message_to_yaml
 from ..node.client import DISCOVERY_WAIT_S, YOUNG_CLIENT_S, wait_until
+from . import options
 from .context import Context
 
-__all__ = ["topic_echo", "topic_hz"]
+__all__ = ["topic_echo", "topic_echo_arguments", "topic_hz", "topic_hz_arguments"]
 
 _TICK_S = 0.1
 
@@ -260,3 +261,111 @@ def topic_hz(args: argparse.Namespace, ctx: Context) -> Any:
     finally:
         node.destroy_subscription(sub)
     return 2 if ctx.console.cancelled.is_set() else 0  # Ctrl-C: ros2cli's exit code
+
+
+def topic_echo_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of `ros2 topic echo`."""
+    options.strategy(parser)
+    parser.add_argument("topic_name", help="Name of the ROS topic to listen to (e.g. '/chatter')")
+    parser.add_argument(
+        "message_type", nargs="?", help="Type of the ROS message (e.g. 'std_msgs/msg/String')"
+    )
+    options.qos(parser, "subscribe", "sensor_data")
+    parser.add_argument(
+        "--csv",
+        action="store_true",
+        help="Output all recursive fields separated by commas (e.g. for plotting). If "
+        "--include-message-info is also passed, the following fields are prepended: "
+        "source_timestamp, received_timestamp, publication_sequence_number, "
+        "reception_sequence_number.",
+    )
+    parser.add_argument(
+        "--field",
+        type=str,
+        default=None,
+        help="Echo a selected field of a message. Use '.' to select sub-fields. For example, to "
+        "echo the position field of a nav_msgs/msg/Odometry message: 'ros2 topic echo "
+        "/odom --field pose.pose.position'",
+    )
+    parser.add_argument(
+        "--full-length",
+        "-f",
+        action="store_true",
+        help="Output all elements for arrays, bytes, and string with a length > "
+        "'--truncate-length', by default they are truncated after '--truncate-length' "
+        "elements with '...''",
+    )
+    parser.add_argument(
+        "--truncate-length",
+        "-l",
+        type=options.unsigned_int,
+        default=128,
+        help="The length to truncate arrays, bytes, and string to (default: 128)",
+    )
+    parser.add_argument(
+        "--no-arr", action="store_true", help="Don't print array fields of messages"
+    )
+    parser.add_argument(
+        "--no-str", action="store_true", help="Don't print string fields of messages"
+    )
+    parser.add_argument(
+        "--flow-style",
+        action="store_true",
+        help="Print collections in the block style (not available with csv format)",
+    )
+    parser.add_argument(
+        "--no-lost-messages", action="store_true", help="Don't report when a message is lost"
+    )
+    parser.add_argument("--raw", action="store_true", help="Echo the raw binary representation")
+    parser.add_argument(
+        "--filter",
+        dest="filter_expr",
+        help="Python expression to filter messages that are printed. Expression can use Python "
+        "builtins as well as m (the message).",
+    )
+    parser.add_argument(
+        "--once", action="store_true", help="Print the first message received and then exit."
+    )
+    parser.add_argument(
+        "--timeout",
+        metavar="N",
+        type=options.positive_float,
+        help="Set a timeout in seconds for waiting",
+        default=None,
+    )
+    parser.add_argument(
+        "--include-message-info",
+        "-i",
+        action="store_true",
+        help="Shows the associated message info.",
+    )
+
+
+def topic_hz_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of `ros2 topic hz`."""
+    parser.add_argument("topic_name", help="Name of the ROS topic to listen to (e.g. '/chatter')")
+    parser.add_argument(
+        "--window",
+        "-w",
+        dest="window_size",
+        type=options.positive_int,
+        default=10000,
+        help="window size, in # of messages, for calculating rate (default: 10000)",
+        metavar="WINDOW",
+    )
+    parser.add_argument(
+        "--filter",
+        dest="filter_expr",
+        default=None,
+        help="only measure messages matching the specified Python expression",
+        metavar="EXPR",
+    )
+    parser.add_argument(
+        "--wall-time",
+        dest="use_wtime",
+        default=False,
+        action="store_true",
+        help="calculates rate using wall time which can be helpful when clock is not published "
+        "during simulation",
+    )
+    options.direct(parser)

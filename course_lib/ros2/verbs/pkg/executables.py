@@ -14,7 +14,15 @@ from ....core.errors import PackageNotFoundError
 from ..absent_programs import absent_program_hint
 from ..context import Context
 
-__all__ = ["executable_paths", "pkg_executables", "pkg_prefix", "run"]
+__all__ = [
+    "executable_paths",
+    "pkg_executables",
+    "pkg_executables_arguments",
+    "pkg_prefix",
+    "pkg_prefix_arguments",
+    "run",
+    "run_arguments",
+]
 
 RUN_PREFIX = "[ros2run]:"
 
@@ -112,3 +120,33 @@ def run(args: argparse.Namespace, ctx: Context) -> Any:
             continue  # the child got the same Ctrl-C and is shutting down
     _report_exit(code, ctx)
     return code
+
+
+def pkg_executables_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of `ros2 pkg executables`."""
+    parser.add_argument("package_name", nargs="?", help="The package name")
+    parser.add_argument(
+        "--full-path", action="store_true", default=False, help="Show full path of each executable"
+    )
+
+
+def pkg_prefix_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of `ros2 pkg prefix`."""
+    parser.add_argument("package_name", help="The package name")
+    parser.add_argument(
+        "--share", action="store_true", help="Show share directory for the package"
+    )
+
+
+def run_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of `ros2 run`."""
+    parser.add_argument(
+        "--prefix",
+        help="Prefix command, which should go before the executable. Command must be wrapped in "
+        "quotes if it contains spaces (e.g. --prefix 'gdb -ex run --args').",
+    )
+    parser.add_argument("package_name", help="Name of the ROS package")
+    parser.add_argument("executable_name", help="Name of the executable")
+    parser.add_argument(
+        "argv", nargs=argparse.REMAINDER, help="Pass arbitrary arguments to the executable"
+    )
