@@ -42,7 +42,7 @@ class _Formatter(argparse.RawDescriptionHelpFormatter):
 
     def __init__(self, prog: str, **kwargs: Any) -> None:
         # `width` is HelpFormatter's constructor argument in CPython 3.10-3.13;
-        # tests/unit/ros2/test_ros2_argparse_tripwires.py fails if that changes.
+        # tests/unit/ros2/command/test_ros2_argparse_tripwires.py fails if that changes.
         sink = output_sink.get(None)
         kwargs.setdefault("width", (sink.width if sink else 80) - 2)
         super().__init__(prog, **kwargs)

@@ -1,6 +1,6 @@
 """A young client waits until it has met the graph; a warm one answers at once.
 
-The wait's rules are unit-tested on a fake clock (tests/unit/ros2/test_ros2_discovery.py).
+The wait's rules are unit-tested on a fake clock (tests/unit/ros2/node/test_ros2_discovery.py).
 """
 
 from __future__ import annotations

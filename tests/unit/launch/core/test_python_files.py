@@ -18,7 +18,7 @@ from course_lib.launch.runtime.process_runner import output_destinations
 from course_lib.launch.runtime.service import where_in_launch_file
 from course_lib.launch.runtime.shim import MODULE_NAMES, launch_modules
 
-FIXTURE = Path(__file__).resolve().parents[2] / "fixtures" / "launch_pkg" / "launch"
+FIXTURE = Path(__file__).resolve().parents[3] / "fixtures" / "launch_pkg" / "launch"
 
 
 def test_shim_modules_exist_only_inside_the_block() -> None:

@@ -11,7 +11,7 @@ from course_lib.launch.api.substitutions import perform_substitutions
 from course_lib.launch.core.context import LaunchContext
 from course_lib.launch.core.description import load_any_launch_file
 
-FIXTURE = Path(__file__).resolve().parents[2] / "fixtures" / "launch_pkg"
+FIXTURE = Path(__file__).resolve().parents[3] / "fixtures" / "launch_pkg"
 
 
 def _eval(text: str, **configs: str) -> str:

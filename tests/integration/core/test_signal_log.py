@@ -27,4 +27,4 @@ def test_stopping_a_child_logs_each_signal_with_sender_target_and_reason(
     command = re.escape("-c import time time.sleep(60)): stopping my-node")
     assert re.search(rf"^\d+\.\d{{3}} pid \d+ \(\S+\) {sent}.*{command}", lines[0])
     assert f"sends SIGKILL to group {pid} (no such process): what my-node left" in lines[1]
-    assert "[test tests/integration/foundation/test_signal_log.py::" in lines[0]
+    assert "[test tests/integration/core/test_signal_log.py::" in lines[0]

@@ -21,7 +21,7 @@ from urllib.parse import urlsplit
 import pytest
 import yaml
 
-REPO = Path(__file__).resolve().parents[3]
+REPO = Path(__file__).resolve().parents[4]
 DEPLOY = REPO / "deploy"
 KUBE = DEPLOY / "kubernetes"
 IMAGE_COURSE = "/opt/ros2-params-course"

@@ -10,7 +10,7 @@ import pytest
 
 from course_lib.ros2.command.commands import run_collected
 
-GOLDEN = Path(__file__).resolve().parents[2] / "golden" / "pkg_create" / "cases.json"
+GOLDEN = Path(__file__).resolve().parents[4] / "golden" / "pkg_create" / "cases.json"
 CASES = {case["case"]: case for case in json.loads(GOLDEN.read_text())}
 # A C++ library and a plain cmake package need templates the course does not offer: it says so.
 NOT_OFFERED = {"cmake_library", "plain_cmake"}
