@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+import time
 from collections.abc import Callable
 from typing import Any
 
@@ -15,6 +16,7 @@ __all__ = ["installed_checks", "run_checks"]
 # Lesson 8's dump: the learner's own file (the package's params file is never rewritten).
 DUMP_NAME = "dump/param_vel_node.yaml"
 NODE_11 = "descriptor_vel_node"
+_GHOST_WAIT_S = 3.5  # a little past the discovery lease (course_lib/dds/fastdds_profile.xml)
 
 
 def _nodes() -> list[str]:
@@ -79,8 +81,31 @@ def _lesson_1(lesson: Any) -> list[Check]:
     ]
 
 
+def _namesakes(node: str) -> tuple[bool, list[str]]:
+    """Return whether `node` is in the graph, and who holds it among live processes (named).
+
+    A node that has just stopped may still be listed for a moment with no process behind it:
+    wait (bounded by the discovery lease) until it leaves or a live process is seen holding it.
+    """
+    from ..lab.drivers import describe, publishers
+    from ..ros2.api.nodes_and_params import client
+
+    deadline = time.monotonic() + _GHOST_WAIT_S
+    while True:
+        listed = node in _nodes()
+        holders = [p for p in publishers(client()) if p.node == node and p.pids]
+        if not listed or holders or time.monotonic() >= deadline:
+            return listed, [describe(p) for p in holders]
+        time.sleep(0.1)
+
+
 def _lesson_2(lesson: Any) -> list[Check]:
     started = _own_node(lesson) is not None
+    gone = started and not _own_node_running(lesson)
+    listed, others = _namesakes("/param_vel_node") if gone else (False, [])
+    what = "param_vel_node is gone, and its parameters with it"
+    if listed and others:  # yours is gone; another lesson's or a terminal's has the name
+        what += f" (the one running now is another: {', '.join(others)}, with its own)"
     return [
         check(
             "you started param_vel_node in this lesson",
@@ -88,8 +113,8 @@ def _lesson_2(lesson: Any) -> list[Check]:
             "run the `%ros2 run parameter_tests param_vel` cell.",
         ),
         check(
-            "param_vel_node is gone, and its parameters with it",
-            started and not _own_node_running(lesson) and "/param_vel_node" not in _nodes(),
+            what,
+            gone and (not listed or others),
             'run the cell with `lesson.stop("param_vel")`.',
         ),
     ]

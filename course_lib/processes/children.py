@@ -15,6 +15,7 @@ import contextlib
 import ctypes
 import functools
 import os
+import queue
 import re
 import signal
 import subprocess
@@ -22,9 +23,10 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable, Mapping, Sequence
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import Future
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, TypeVar
 
 from ..core.errors import ProcessStartError
 from ..core.signalling import send
@@ -50,7 +52,7 @@ OWNER_NS_ENV = "COURSE_OWNER_NS"  # the PID namespace in which COURSE_OWNER's pi
 NAME_ENV = "COURSE_PROCESS"
 _PR_SET_PDEATHSIG = 1
 _MAX_LINES = 5000
-_spawner = ThreadPoolExecutor(max_workers=1, thread_name_prefix="course-spawner")
+T = TypeVar("T")
 _LIBC = ctypes.CDLL(None, use_errno=True)  # loaded once: preexec must not load libraries
 
 
@@ -137,6 +139,44 @@ def set_parent_death_signal(sig: int, parent_pid: int) -> None:
     _LIBC.prctl(_PR_SET_PDEATHSIG, int(sig), 0, 0, 0)
     if os.getppid() != parent_pid:  # the parent died before prctl took effect
         os._exit(1)
+
+
+class _SpawnerThread:
+    """The one thread every child is forked from, alive until the process itself ends.
+
+    A daemon thread, not a pool's worker: Python joins pool workers at exit *before* atexit
+    handlers run, and the kernel would then SIGKILL every child (the death signal follows the
+    forking thread), so a session's atexit stop never reached a child alive. A node killed
+    that way leaves its DDS participant in the graph until its lease runs out.
+    """
+
+    def __init__(self) -> None:
+        self._work: queue.SimpleQueue[tuple[Callable[[], Any], Future[Any]]] = queue.SimpleQueue()
+        self._lock = threading.Lock()
+        self._thread: threading.Thread | None = None
+
+    def run(self, start: Callable[[], T]) -> T:
+        """Run `start` on the spawner thread and return its result (or raise its error)."""
+        with self._lock:
+            if self._thread is None or not self._thread.is_alive():
+                self._thread = threading.Thread(
+                    target=self._serve, name="course-spawner", daemon=True
+                )
+                self._thread.start()
+        done: Future[T] = Future()
+        self._work.put((start, done))
+        return done.result()
+
+    def _serve(self) -> None:
+        while True:
+            start, done = self._work.get()
+            try:
+                done.set_result(start())
+            except BaseException as exc:  # handed to the caller, who raises it
+                done.set_exception(exc)
+
+
+_spawner = _SpawnerThread()
 
 
 def _die_with_parent(parent_pid: int) -> Callable[[], None]:
@@ -348,13 +388,13 @@ def spawn(
         )
 
     try:
-        popen = _spawner.submit(start).result()
+        popen = _spawner.run(start)
     except OSError as exc:
         raise ProcessStartError(
             f"Could not start {name}: {exc.strerror or exc}",
             hint=f"check that `{argv[0]}` exists and is executable (`make setup` rebuilds it).",
         ) from exc
-    return ChildProcess(popen, name, argv, respawn=lambda: _spawner.submit(start).result())
+    return ChildProcess(popen, name, argv, respawn=lambda: _spawner.run(start))
 
 
 def process_environ(pid: int) -> dict[str, str]:

@@ -7,6 +7,7 @@ passes was earned by this lesson's own node, robot and files.
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -70,6 +71,29 @@ def test_lesson2_fails_when_the_node_was_never_started_or_still_runs(stop_nodes)
     assert "you started param_vel_node in this lesson" in _failed(lesson)
     lesson.run("parameter_tests", "param_vel")
     assert _failed(lesson) == {"param_vel_node is gone, and its parameters with it"}
+
+
+def test_lesson2_passes_when_its_node_is_gone_and_another_has_the_name(stop_nodes) -> None:
+    """Another lesson's or a terminal's param_vel_node is not this lesson's: named, not failed."""
+    from course_lib.core.paths import venv_bin_dir
+
+    lesson = start(2)
+    lesson.run("parameter_tests", "param_vel")
+    lesson.stop("param_vel")
+    other = subprocess.Popen(
+        [str(venv_bin_dir() / "ros2"), "run", "parameter_tests", "param_vel"],
+        env=lesson.session.env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        start_new_session=True,  # its own process group, as a terminal's foreground job
+    )  # fmt: skip
+    try:
+        while "/param_vel_node" not in api.node_list():
+            assert other.poll() is None, "the terminal's param_vel ended"
+        gone = lesson.self_check().checks[1]
+        assert gone.passed, lesson.self_check().text()
+        assert "the one running now is another: /param_vel_node (pid" in gone.what, gone.what
+    finally:
+        os.killpg(other.pid, signal.SIGINT)  # Ctrl-C reaches the terminal's whole job
+        other.wait(timeout=10)
 
 
 def test_lesson3_fails_without_the_world() -> None:

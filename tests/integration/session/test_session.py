@@ -128,6 +128,50 @@ def test_sigkilled_owner_leaves_no_child() -> None:
     assert wait_gone(pids, timeout=2.0) == []
 
 
+CTRL_C_CHILD = textwrap.dedent(
+    """
+    import signal, sys, time
+    def stopped(number, frame):
+        open(sys.argv[1], "w").write(signal.Signals(number).name)
+        sys.exit(0)
+    signal.signal(signal.SIGINT, stopped)
+    open(sys.argv[1], "w").write("started")
+    time.sleep(600)
+    """
+)
+EXITING_OWNER = textwrap.dedent(
+    """
+    import sys, time
+    from pathlib import Path
+    from course_lib.session.session import Session
+    s = Session()
+    said = Path(sys.argv[2])
+    s.spawn([sys.executable, "-c", sys.argv[1], str(said)], name="ctrl-c child")
+    while not (said.exists() and said.read_text() == "started"):
+        time.sleep(0.02)
+    print("ready", flush=True)
+    sys.stdin.read()  # then exit normally, as a kernel does when it is shut down or restarted
+    """
+)
+
+
+def test_owner_that_exits_normally_stops_its_children_like_ctrl_c(tmp_path: Path) -> None:
+    # A node stopped like Ctrl-C leaves the ROS graph at once; one killed by the death signal
+    # (SIGKILL) stays listed until its lease runs out. The spawner thread used to be joined
+    # before atexit ran, so every child of an exiting kernel died by SIGKILL.
+    said = tmp_path / "signal"
+    with subprocess.Popen(
+        [sys.executable, "-c", EXITING_OWNER, CTRL_C_CHILD, str(said)],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+    ) as owner:
+        assert owner.stdout.readline().strip() == "ready"
+        owner.stdin.close()
+        assert owner.wait(timeout=20) == 0
+    assert said.read_text() == "SIGINT"
+
+
 def test_leftovers_of_a_dead_owner_are_reaped() -> None:
     # A child that escaped the death signal (started by hand) but carries a dead owner's tag.
     dead_owner = subprocess.run(
