@@ -272,7 +272,7 @@ def _lesson_8(lesson: Any) -> list[Check]:
 
 
 def _lesson_9(lesson: Any) -> list[Check]:
-    from ..launch.command import dry_run
+    from ..launch.command.dry_run import dry_run
 
     path = lesson.learner_file("param_vel_node.yaml")
     try:

@@ -31,7 +31,7 @@ def _executables(package: str, file: str, *args: str) -> list[str]:
     """Return the names of the executables the launch file starts (read, not run)."""
     from pathlib import Path
 
-    from ..launch.command import dry_run
+    from ..launch.command.dry_run import dry_run
 
     return sorted({Path(plan.cmd[0]).name for plan in dry_run(package, file, *args).nodes})
 

@@ -288,7 +288,7 @@ class Lesson:
 
     def dry_run(self, package: str, file: str, *args: str) -> files.Text:
         """Show what `ros2 launch ... ` would start, with each parameter's origin and traps."""
-        from ..launch.command import dry_run
+        from ..launch.command.dry_run import dry_run
 
         report = dry_run(package, file, *args)
         # rclpy declares these two on every node; the dry run does not know it yet (reported).

@@ -8,8 +8,7 @@ from pathlib import Path
 import pytest
 from rcl_interfaces.srv import GetParameters
 
-from course_lib.launch import launch
-from course_lib.launch.command import dry_run
+from course_lib.launch import dry_run, launch
 from course_lib.ros2.node.client import RosClient
 from course_lib.session.session import Session
 
