@@ -20,15 +20,9 @@ import psutil
 from jupyter_client.manager import KernelManager
 
 from course_lib.core.paths import REPO_ROOT, runtime_dir
+from course_lib.core.procfs import pid_namespace
 from course_lib.lab.protocol import SOCKET_ENV
-from course_lib.processes.children import (
-    OWNER_ENV,
-    OWNER_NS_ENV,
-    ChildProcess,
-    owner_tag,
-    pid_namespace,
-    spawn,
-)
+from course_lib.processes.children import OWNER_ENV, OWNER_NS_ENV, ChildProcess, owner_tag, spawn
 from course_lib.tools.testing import independent_env
 
 __all__ = ["Lab", "LabKernel", "start_lab", "tree_pids"]
@@ -90,7 +84,7 @@ class LabKernel:
 
     @property
     def pid(self) -> int:
-        return self.manager.provisioner.process.pid  # type: ignore[union-attr]
+        return self.manager.provisioner.pid  # type: ignore[union-attr]
 
     def submit(self, code: str) -> str:
         """Start executing `code` as one cell; return its message id for collect()."""

@@ -17,9 +17,9 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
+from course_lib.core.waiting import wait_until  # noqa: E402
 from course_lib.notebook.magics import run_line  # noqa: E402
 from course_lib.ros2 import client, start_daemon  # noqa: E402
-from course_lib.ros2.node.client import wait_until  # noqa: E402
 from course_lib.ros2.node.connect import daemon_socket  # noqa: E402
 from course_lib.session.session import get_session  # noqa: E402
 

@@ -62,7 +62,7 @@ def main() -> None:
     done = threading.Event()
 
     def sample() -> None:
-        pid = manager.provisioner.process.pid  # type: ignore[union-attr]
+        pid = manager.provisioner.pid  # type: ignore[union-attr]
         while not done.wait(0.05):
             sizes = _tree_rss(pid)
             if sum(sizes.values()) > sum(peak.values()):

@@ -7,6 +7,8 @@ import sys
 from collections.abc import Mapping
 from pathlib import Path
 
+from . import ament_index
+from .env_paths import append_once, prepend
 from .errors import ExecutableNotFoundError, PackageNotFoundError
 from .paths import WORKSPACE_INSTALL_DIR
 
@@ -20,34 +22,23 @@ __all__ = [
     "workspace_env",
 ]
 
-_MARKERS = Path("share/ament_index/resource_index/packages")
-
 
 def _prefixes(env: Mapping[str, str] | None = None) -> list[Path]:
-    env = os.environ if env is None else env
-    raw = env.get("AMENT_PREFIX_PATH")
-    if raw is None:  # outside a sourced shell: the course's own workspace
-        return [WORKSPACE_INSTALL_DIR]
-    return [Path(p) for p in raw.split(os.pathsep) if p]
+    listed = ament_index.prefix_path(os.environ if env is None else env)
+    return [WORKSPACE_INSTALL_DIR] if listed is None else listed  # unsourced: the course's
 
 
 def list_packages(env: Mapping[str, str] | None = None) -> dict[str, Path]:
     """Return every indexed package name with its prefix (first prefix wins)."""
-    found: dict[str, Path] = {}
-    for prefix in _prefixes(env):
-        marker_dir = prefix / _MARKERS
-        if marker_dir.is_dir():
-            for marker in sorted(marker_dir.iterdir()):
-                found.setdefault(marker.name, prefix)
-    return found
+    return ament_index.resources("packages", _prefixes(env))
 
 
 def package_prefix(package: str, env: Mapping[str, str] | None = None) -> Path:
     """Return the install prefix of `package`."""
-    for prefix in _prefixes(env):
-        if (prefix / _MARKERS / package).is_file():
-            return prefix
-    raise PackageNotFoundError(package)
+    prefix = ament_index.resource_prefix("packages", package, _prefixes(env))
+    if prefix is None:
+        raise PackageNotFoundError(package)
+    return prefix
 
 
 def package_share_directory(package: str, env: Mapping[str, str] | None = None) -> Path:
@@ -69,21 +60,6 @@ def find_executable(package: str, executable: str, env: Mapping[str, str] | None
     if executable not in available:
         raise ExecutableNotFoundError(package, executable, available)
     return package_prefix(package, env) / "lib" / package / executable
-
-
-def _prepend(value: str, existing: str | None) -> str:
-    parts = [value] + [p for p in (existing or "").split(os.pathsep) if p and p != value]
-    return os.pathsep.join(parts)
-
-
-def _underlay(value: str, existing: str | None) -> str:
-    """Add `value` after what the caller has (kept where it is if already there).
-
-    The course's workspace is the learner's underlay: a workspace sourced after it comes
-    first in the caller's paths and must keep winning, as in a sourced shell.
-    """
-    parts = [p for p in (existing or "").split(os.pathsep) if p]
-    return os.pathsep.join(parts if value in parts else [*parts, value])
 
 
 def _dsv_actions(prefix: Path, dsv: Path, seen: set[Path]) -> list[tuple[str, str, str]]:
@@ -121,7 +97,7 @@ def _overlay(env: dict[str, str], prefix: Path) -> None:
             if action.startswith("prepend-non-duplicate"):
                 if action.endswith("if-exists") and not Path(value).exists():
                     continue
-                env[variable] = _underlay(value, env.get(variable))
+                env[variable] = append_once(value, env.get(variable))
             elif action == "set" or (action == "set-if-unset" and variable not in env):
                 env[variable] = value
 
@@ -134,10 +110,10 @@ def workspace_env(base: Mapping[str, str] | None = None) -> dict[str, str]:
     """
     env = dict(os.environ if base is None else base)
     install = WORKSPACE_INSTALL_DIR
-    env["AMENT_PREFIX_PATH"] = _underlay(str(install), env.get("AMENT_PREFIX_PATH"))
-    env["COLCON_PREFIX_PATH"] = _underlay(str(install), env.get("COLCON_PREFIX_PATH"))
+    env["AMENT_PREFIX_PATH"] = append_once(str(install), env.get("AMENT_PREFIX_PATH"))
+    env["COLCON_PREFIX_PATH"] = append_once(str(install), env.get("COLCON_PREFIX_PATH"))
     _overlay(env, install)
-    env["PATH"] = _prepend(str(Path(sys.executable).parent), env.get("PATH"))
+    env["PATH"] = prepend(str(Path(sys.executable).parent), env.get("PATH"))
     return env
 
 

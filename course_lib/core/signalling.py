@@ -14,7 +14,8 @@ import logging
 import os
 import signal
 import time
-from pathlib import Path
+
+from . import procfs
 
 __all__ = ["LOG_ENV", "send"]
 
@@ -23,11 +24,7 @@ _log = logging.getLogger(__name__)
 
 
 def _command(pid: int) -> str:
-    try:
-        raw = Path(f"/proc/{pid}/cmdline").read_bytes()
-    except OSError:
-        return "no such process"
-    words = raw.replace(b"\0", b" ").decode(errors="replace").split()  # one line, always
+    words = " ".join(procfs.cmdline(pid) or ()).split()  # one line, always
     return " ".join(words)[:160] or "no such process"
 
 

@@ -17,6 +17,7 @@ from pathlib import Path
 import yaml
 
 from ..core.errors import ConfigError, CourseError
+from ..core.ports import free_port
 from ..core.signalling import send
 from .accounts import ensure_accounts, refuse_system_accounts
 from .environment import build_environment, check_world_executable
@@ -56,12 +57,6 @@ def _check_port(settings: HubSettings, source: Path) -> None:
             ) from None
 
 
-def _free_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
-
-
 def _check_before_start(settings: HubSettings, source: Path) -> None:
     """Refuse before anything is built or started: root, names, port, npm, the interpreter."""
     if os.geteuid() != 0:
@@ -85,9 +80,9 @@ def _plan(settings: HubSettings, state: Path, course: Path, proxy: Path) -> HubP
     return HubPlan(
         ip=settings.ip,
         port=settings.port,
-        hub_port=_free_port(),
-        proxy_api_port=_free_port(),
-        progress_port=_free_port(),
+        hub_port=free_port(),
+        proxy_api_port=free_port(),
+        progress_port=free_port(),
         authenticator=settings.authenticator,
         learners=settings.learners,
         admins=settings.admins,

@@ -11,10 +11,10 @@ import contextlib
 import re
 import signal
 import threading
-import time
 from dataclasses import asdict, dataclass
 
 from ..core.signalling import send
+from ..core.waiting import wait_until
 from ..processes.children import owner_tag
 
 __all__ = ["NodeRecord", "NodeRegister", "node_name_from_log", "stop_tagged"]
@@ -57,9 +57,7 @@ def stop_tagged(tag: str, *, grace_s: float = 5.0) -> bool:
                 send(pid, sig, group=True, reason=reason)
             except ProcessLookupError:
                 send(pid, sig, reason=reason)
-        deadline = time.monotonic() + wait_s
-        while owner_tag(pid) == tag and time.monotonic() < deadline:
-            time.sleep(0.02)
+        wait_until(lambda: owner_tag(pid) != tag, wait_s)
     return owner_tag(pid) != tag
 
 

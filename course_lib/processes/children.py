@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
-import functools
 import os
 import queue
 import re
@@ -25,9 +24,9 @@ from collections import deque
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import Future
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any, TypeVar
 
+from ..core import procfs
 from ..core.errors import ProcessStartError
 from ..core.signalling import send
 
@@ -39,9 +38,6 @@ __all__ = [
     "OutputLine",
     "owner_alive",
     "owner_tag",
-    "pid_alive",
-    "pid_namespace",
-    "process_environ",
     "reap_orphans",
     "spawn",
     "tag_names",
@@ -52,6 +48,7 @@ OWNER_NS_ENV = "COURSE_OWNER_NS"  # the PID namespace in which COURSE_OWNER's pi
 NAME_ENV = "COURSE_PROCESS"
 _PR_SET_PDEATHSIG = 1
 _MAX_LINES = 5000
+_REAP_WAIT_S = 10.0  # after a child closed its output, at most, until it exits
 T = TypeVar("T")
 _LIBC = ctypes.CDLL(None, use_errno=True)  # loaded once: preexec must not load libraries
 
@@ -65,48 +62,14 @@ class OutputLine:
     time: float
 
 
-def _stat(pid: int) -> list[str] | None:
-    """Return the fields of /proc/<pid>/stat after the command name, or None if no such pid."""
-    try:
-        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-    except (OSError, IndexError):
-        return None
-
-
-def _start_time(pid: int) -> str | None:
-    """Return the start time of live process `pid` (field 22 of /proc/<pid>/stat), or None."""
-    fields = _stat(pid)
-    return None if fields is None or fields[0] in ("Z", "X") else fields[19]
-
-
-def _holder_start(pid: int) -> str | None:
-    """Return the start time of whatever process holds `pid`, a zombie too; None if none."""
-    fields = _stat(pid)
-    return None if fields is None else fields[19]
-
-
-def pid_alive(pid: int) -> bool:
-    """Return True while process `pid` runs (a zombie counts as dead)."""
-    return _start_time(pid) is not None
-
-
-@functools.cache
-def pid_namespace() -> str:
-    """Return the id of this process's PID namespace (pids mean nothing outside it)."""
-    try:
-        return os.readlink("/proc/self/ns/pid").strip("pid:[]")
-    except OSError:
-        return ""
-
-
 def owner_tag(pid: int | None = None) -> str:
     """Return the tag that marks children of process `pid` (default: this process)."""
     pid = os.getpid() if pid is None else pid
-    return f"{pid}:{_start_time(pid)}"
+    return f"{pid}:{procfs.start_time(pid)}"
 
 
 def _other_namespace(namespace: str) -> bool:
-    return namespace not in ("", pid_namespace())
+    return namespace not in ("", procfs.pid_namespace())
 
 
 def tag_names(tag: str, pid: int, start: str | None, namespace: str = "") -> bool:
@@ -130,7 +93,7 @@ def owner_alive(tag: str, namespace: str = "") -> bool:
     if _other_namespace(namespace):
         return True
     owner = tag.partition(":")[0]
-    return owner.isdigit() and tag_names(tag, int(owner), _start_time(int(owner)))
+    return owner.isdigit() and tag_names(tag, int(owner), procfs.start_time(int(owner)))
 
 
 def set_parent_death_signal(sig: int, parent_pid: int) -> None:
@@ -207,7 +170,7 @@ class ChildProcess:
     def _attach(self, popen: subprocess.Popen[bytes]) -> None:
         self._popen = popen
         # Read while the child is not reaped yet, so `popen.pid` still names it.
-        self._started = _holder_start(popen.pid)
+        self._started = procfs.holder_start(popen.pid)
         self._group_cleared = False
         self._readers = [
             threading.Thread(target=self._read, args=(pipe, stream), daemon=True)
@@ -233,7 +196,7 @@ class ChildProcess:
     def alive(self) -> bool:
         # poll() says None while another thread waits on the child: ask /proc too (a zombie
         # is dead), so a killed child never looks alive.
-        return self._popen.poll() is None and pid_alive(self.pid)
+        return self._popen.poll() is None and procfs.pid_alive(self.pid)
 
     @property
     def lines(self) -> list[OutputLine]:
@@ -263,6 +226,12 @@ class ChildProcess:
                 with contextlib.suppress(Exception):
                     listener(line)
         pipe.close()
+        if stream == "stdout" or len(self._readers) == 1:
+            # The output ended: the child has exited or soon will. Reap it here, so that a
+            # child stopped from elsewhere (another notebook's lesson, `make stop`) never stays
+            # a zombie until its owner happens to ask about it.
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                self._popen.wait(timeout=_REAP_WAIT_S)
         with self._cond:
             self._cond.notify_all()
 
@@ -327,7 +296,7 @@ class ChildProcess:
         """
         if self._group_cleared:
             return
-        holder = _holder_start(self.pid)
+        holder = procfs.holder_start(self.pid)
         if holder is not None and holder != self._started:
             self._group_cleared = True  # the pid names another process now: not our group
             return
@@ -369,7 +338,7 @@ def spawn(
     """Start `argv` as a child that dies with this process and return its handle."""
     child_env = dict(os.environ if env is None else env)
     child_env[OWNER_ENV] = owner_tag()
-    child_env[OWNER_NS_ENV] = pid_namespace()
+    child_env[OWNER_NS_ENV] = procfs.pid_namespace()
     child_env[NAME_ENV] = name
     child_env.setdefault("PYTHONUNBUFFERED", "1")
     pipe = subprocess.PIPE if capture else None
@@ -397,16 +366,6 @@ def spawn(
     return ChildProcess(popen, name, argv, respawn=lambda: _spawner.run(start))
 
 
-def process_environ(pid: int) -> dict[str, str]:
-    """Return the environment of process `pid` ({} if it cannot be read)."""
-    try:
-        raw = Path(f"/proc/{pid}/environ").read_bytes()
-    except OSError:
-        return {}
-    pairs = (item.partition(b"=") for item in raw.split(b"\0") if item)
-    return {k.decode(errors="replace"): v.decode(errors="replace") for k, _, v in pairs}
-
-
 def _orphans() -> dict[int, str]:
     """Return this user's processes whose owner tag names a process that is gone.
 
@@ -414,22 +373,14 @@ def _orphans() -> dict[int, str]:
     """
     me, uid = os.getpid(), os.getuid()
     found = {}
-    for entry in Path("/proc").iterdir():
-        if entry.name.isdigit() and int(entry.name) != me and _uid(entry) == uid:
-            pid = int(entry.name)
-            started = _start_time(pid)
-            env = process_environ(pid)
+    for pid in procfs.pids():
+        if pid != me and procfs.owner_uid(pid) == uid:
+            started = procfs.start_time(pid)
+            env = procfs.environ(pid)
             tag = env.get(OWNER_ENV)
             if started and tag and not owner_alive(tag, env.get(OWNER_NS_ENV, "")):
                 found[pid] = started
     return found
-
-
-def _uid(proc_dir: Path) -> int | None:
-    try:
-        return proc_dir.stat().st_uid
-    except OSError:
-        return None
 
 
 def reap_orphans(*, rounds: int = 4) -> list[int]:
@@ -442,7 +393,7 @@ def reap_orphans(*, rounds: int = 4) -> list[int]:
     for _ in range(rounds):
         batch = _orphans()
         for pid, started in batch.items():
-            if _start_time(pid) != started:
+            if procfs.start_time(pid) != started:
                 continue  # gone since, and its pid perhaps another process's now
             with contextlib.suppress(ProcessLookupError, PermissionError):
                 send(pid, signal.SIGKILL, reason="a leftover: its owner is gone")

@@ -10,7 +10,8 @@ A domain is leased only if no other process on this host uses it:
   of the host's network namespace, whoever owns it, without root.
 
 Children inherit the id through ``ROS_DOMAIN_ID`` and need no lease of their own. This module
-needs only the standard library (tests run it as other Unix users with the system Python).
+needs only the standard library (tests run it as other Unix users with the system Python),
+and so does `core.procfs`, which reads the UDP tables for it.
 """
 
 from __future__ import annotations
@@ -20,8 +21,8 @@ import os
 import socket
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
 
+from ..core import procfs
 from ..core.errors import DomainUnavailableError
 
 __all__ = [
@@ -42,7 +43,6 @@ _USABLE = [*range(1, 102), *range(215, 233)]
 # offsets 0 and 1 (multicast) and 10 + 2 i, 11 + 2 i (participant i). Offset 2 is no DDS port,
 # and the lease is TCP anyway, whose port space is separate from UDP's.
 _PORT_BASE, _DOMAIN_GAIN, _LEASE_OFFSET = 7400, 250, 2
-_UDP_TABLES = (Path("/proc/net/udp"), Path("/proc/net/udp6"))
 
 
 def candidate_domains(start: int) -> Iterator[int]:
@@ -62,23 +62,9 @@ def lease_port(domain_id: int) -> int:
     return port_block(domain_id).start + _LEASE_OFFSET
 
 
-def _bound_udp_ports() -> set[int]:
-    """Return the local ports of every UDP socket on this host (all users)."""
-    ports = set()
-    for table in _UDP_TABLES:
-        try:
-            lines = table.read_text().splitlines()[1:]
-        except OSError:
-            continue
-        for line in lines:
-            local = line.split()[1]  # "0100007F:1F90": address and port in hex
-            ports.add(int(local.rsplit(":", 1)[1], 16))
-    return ports
-
-
 def domain_in_use(domain_id: int, bound: set[int] | None = None) -> bool:
     """Return True if some process on this host has a DDS socket in `domain_id`'s ports."""
-    bound = _bound_udp_ports() if bound is None else bound
+    bound = (procfs.bound_udp_ports() or set()) if bound is None else bound
     block = port_block(domain_id)
     return any(port in block for port in bound)
 
@@ -125,7 +111,7 @@ def lease_domain(env: Mapping[str, str] | None = None, *, start: int | None = No
     explicit = env.get(DOMAIN_ENV, "").strip()
     if explicit:
         return DomainLease(int(explicit))
-    bound = _bound_udp_ports()
+    bound = procfs.bound_udp_ports() or set()
     first = 1 + os.getpid() % 101 if start is None else start
     for domain_id in candidate_domains(first):
         if domain_in_use(domain_id, bound):

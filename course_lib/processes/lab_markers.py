@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..core import procfs
 from ..core.paths import runtime_dir
-from .children import pid_alive
 
 __all__ = ["lab_clone_marker", "lab_marker", "owning_lab", "running_lab_domain"]
 
@@ -28,13 +28,6 @@ def lab_clone_marker(pid: int) -> Path:
     return runtime_dir() / f"lab-{pid}.clone"
 
 
-def _parent(pid: int) -> int:
-    try:
-        return int(Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[1])
-    except (OSError, IndexError, ValueError):
-        return 0
-
-
 def owning_lab(pid: int) -> int | None:
     """Return the pid of the running lab that process `pid` descends from, if any.
 
@@ -44,7 +37,7 @@ def owning_lab(pid: int) -> int | None:
     while pid > 1:
         if lab_marker(pid).exists():
             return pid
-        pid = _parent(pid)
+        pid = procfs.parent_pid(pid)
     return None
 
 
@@ -53,7 +46,7 @@ def running_lab_domain() -> str | None:
     markers = sorted(runtime_dir().glob("lab-*.domain"), key=lambda p: p.stat().st_mtime)
     for marker in reversed(markers):
         pid = marker.stem.removeprefix("lab-")
-        if pid.isdigit() and pid_alive(int(pid)):
+        if pid.isdigit() and procfs.pid_alive(int(pid)):
             return marker.read_text().strip() or None
         marker.unlink(missing_ok=True)  # a lab that was killed
     return None

@@ -16,13 +16,13 @@ the course's, even with a copied ``COURSE_OWNER``.
 
 from __future__ import annotations
 
-import contextlib
 import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..core import procfs
 from ..core.paths import runtime_dir
-from .children import NAME_ENV, OWNER_ENV, OWNER_NS_ENV, owner_alive, process_environ, tag_names
+from .children import NAME_ENV, OWNER_ENV, OWNER_NS_ENV, owner_alive, tag_names
 
 __all__ = [
     "LAB_ENV",
@@ -37,7 +37,6 @@ __all__ = [
 ]
 
 LAB_ENV = "COURSE_LAB"  # set in a lab's JupyterLab, and so in its kernels and terminals
-_PROC = Path("/proc")
 
 
 @dataclass(frozen=True)
@@ -76,14 +75,10 @@ class CourseProcess:
 
 def read_process(pid: int) -> ProcessInfo | None:
     """Return /proc's view of `pid`, or None if it is gone, a zombie, or unreadable."""
-    entry = _PROC / str(pid)
-    try:
-        fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
-        uid = entry.stat().st_uid
-        argv = (entry / "cmdline").read_bytes().split(b"\0")
-    except (OSError, IndexError):
-        return None
-    if fields[0] in ("Z", "X"):
+    fields = procfs.stat_fields(pid)
+    uid = procfs.owner_uid(pid)
+    argv = procfs.cmdline(pid)
+    if fields is None or uid is None or argv is None or fields[0] in ("Z", "X"):
         return None
     return ProcessInfo(
         pid=pid,
@@ -91,19 +86,18 @@ def read_process(pid: int) -> ProcessInfo | None:
         pgid=int(fields[2]),
         start=fields[19],
         uid=uid,
-        argv=tuple(a.decode(errors="replace") for a in argv if a),
-        env=process_environ(pid),
+        argv=argv,
+        env=procfs.environ(pid),
     )
 
 
 def _user_processes() -> dict[int, ProcessInfo]:
     uid = os.getuid()
     found = {}
-    for entry in _PROC.iterdir():
-        if entry.name.isdigit():
-            info = read_process(int(entry.name))
-            if info is not None and info.uid == uid:
-                found[info.pid] = info
+    for pid in procfs.pids():
+        info = read_process(pid)
+        if info is not None and info.uid == uid:
+            found[info.pid] = info
     return found
 
 
@@ -149,21 +143,9 @@ def _is_jupyterlab(info: ProcessInfo) -> bool:
 def _socket_holders(table: dict[int, ProcessInfo]) -> set[int]:
     """Return the processes that hold a Unix socket bound in the runtime folder."""
     folder = f"{runtime_dir()}{os.sep}"
-    inodes = set()
-    with contextlib.suppress(OSError):
-        for line in (_PROC / "net" / "unix").read_text().splitlines()[1:]:
-            parts = line.split(None, 7)
-            if len(parts) == 8 and parts[7].startswith(folder):
-                inodes.add(f"socket:[{parts[6]}]")
-    holders = set()
-    for pid in table if inodes else ():
-        with contextlib.suppress(OSError):
-            for fd in (_PROC / str(pid) / "fd").iterdir():
-                with contextlib.suppress(OSError):
-                    if os.readlink(fd) in inodes:
-                        holders.add(pid)
-                        break
-    return holders
+    sockets = procfs.unix_socket_paths().items()
+    inodes = {inode for inode, path in sockets if path.startswith(folder)}
+    return {pid for pid in table if inodes and not inodes.isdisjoint(procfs.fd_targets(pid))}
 
 
 def lab_markers() -> dict[int, list[Path]]:

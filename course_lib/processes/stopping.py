@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import contextlib
 import signal
-import time
 from dataclasses import dataclass, field
 
 from ..core.signalling import send
+from ..core.waiting import wait_until
 from .ownership import CourseProcess, course_processes, current_lab, read_process
 
 __all__ = ["StopReport", "Stopped", "stop_course"]
@@ -74,12 +74,13 @@ def _signal(proc: CourseProcess, sig: signal.Signals) -> None:
 
 def _wait_gone(pending: dict[int, CourseProcess], timeout: float) -> list[int]:
     """Wait until every pending process is gone or `timeout` passes; return those gone."""
-    deadline = time.monotonic() + timeout
-    while True:
-        gone = [pid for pid, proc in pending.items() if not _same(proc)]
-        if len(gone) == len(pending) or time.monotonic() > deadline:
-            return gone
-        time.sleep(0.05)  # polling /proc: a non-child's exit has no event to wait on
+
+    def gone() -> list[int]:
+        return [pid for pid, proc in pending.items() if not _same(proc)]
+
+    # polling /proc: a non-child's exit has no event to wait on
+    wait_until(lambda: len(gone()) == len(pending), timeout, interval=0.05)
+    return gone()
 
 
 def _stop_batch(found: list[CourseProcess], grace_s: float, report: StopReport) -> None:

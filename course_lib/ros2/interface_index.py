@@ -12,6 +12,8 @@ import sys
 from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 
+from ..core import ament_index
+
 __all__ = [
     "KINDS",
     "interface_packages",
@@ -19,8 +21,6 @@ __all__ = [
     "interfaces",
     "prefixes",
 ]
-
-_INDEX = Path("share") / "ament_index" / "resource_index"
 
 
 def _is_msg(name: str) -> bool:
@@ -45,25 +45,13 @@ KINDS: dict[str, Callable[[str], bool]] = {
 
 def prefixes(env: Mapping[str, str]) -> list[Path]:
     """Return the install prefixes to search, first wins: AMENT_PREFIX_PATH, then the wheels'."""
-    raw = env.get("AMENT_PREFIX_PATH", "")
-    found = [Path(p) for p in raw.split(os.pathsep) if p]
+    found = ament_index.prefix_path(env) or []
     return list(dict.fromkeys([*found, Path(sys.prefix)]))
-
-
-def _resources(kind: str, roots: Iterable[Path]) -> dict[str, Path]:
-    found: dict[str, Path] = {}
-    for root in roots:
-        folder = root / _INDEX / kind
-        if folder.is_dir():
-            for entry in sorted(folder.iterdir()):
-                if not entry.name.startswith("."):
-                    found.setdefault(entry.name, root)
-    return found
 
 
 def interface_packages(roots: Iterable[Path]) -> list[str]:
     """Return the packages that generate interfaces, sorted."""
-    return sorted(_resources("rosidl_interfaces", roots))
+    return sorted(ament_index.resources("rosidl_interfaces", roots))
 
 
 def interfaces(
@@ -73,9 +61,9 @@ def interfaces(
 
     Raise LookupError("Unknown package 'x'") for a package that is not installed.
     """
-    index = _resources("rosidl_interfaces", roots)
+    index = ament_index.resources("rosidl_interfaces", roots)
     wanted = list(packages) or list(index)
-    known = _resources("packages", roots)
+    known = ament_index.resources("packages", roots)
     keep = KINDS[kind]
     result: dict[str, list[str]] = {}
     for package in wanted:
@@ -83,7 +71,7 @@ def interfaces(
             raise LookupError(f"Unknown package '{package}'")
         if package not in index:
             continue
-        lines = (index[package] / _INDEX / "rosidl_interfaces" / package).read_text()
+        lines = ament_index.resource("rosidl_interfaces", package, [index[package]])
         names = {
             line.rsplit(".", 1)[0] for line in lines.splitlines() if "_" not in line and keep(line)
         }
@@ -101,7 +89,7 @@ def interface_path(name: str, roots: list[Path]) -> Path:
         raise ValueError(f"Invalid name '{name}'. Must not contain empty parts")
     if ".." in parts:
         raise ValueError(f"Invalid name '{name}'. Must not contain '..'")
-    prefix = _resources("packages", roots).get(parts[0])
+    prefix = ament_index.resources("packages", roots).get(parts[0])
     if prefix is None:
         raise LookupError(f"Unknown package '{parts[0]}'")
     path = os.path.join(prefix, "share", name)

@@ -1,68 +1,43 @@
 """Render `ros2 interface show` from interface files (pure): comments, nesting, tabs.
 
-Each line is judged alone, as ros2interface does with rosidl_adapter: a line starting with
-`#` is a comment unless nothing but `#`s (and a unit like `[m]`) is on it; a field's
-trailing comment is cut with `--no-comments`; a field of a message type is followed by
-that type's definition, one tab deeper.
+Each line is judged alone by rosidl_adapter's parser, as ros2interface does: a comment line,
+a field's trailing comment (cut with `--no-comments`), and a field of a message type, which
+is followed by that type's definition, one tab deeper.
 """
 
 from __future__ import annotations
 
-import re
-import textwrap
 from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+
+from rosidl_adapter.parser import parse_message_string
 
 __all__ = ["show_lines"]
 
-SEPARATORS = ("---",)
-_INTS = (f"{sign}int{bits}" for sign in ("", "u") for bits in (8, 16, 32, 64))
-PRIMITIVES = frozenset(("bool", "byte", "char", "float32", "float64", "string", "wstring", *_INTS))
-_UNIT = re.compile(r"(\s*\[([^,\]]+)\])")
+SEPARATORS = ("---",)  # between request and response (and an action's feedback)
 
 
-def _annotation(comment: str) -> str | None:
-    """Return the comment rosidl_adapter keeps (unit removed, dedented), None if none."""
-    matches = _UNIT.findall(comment)
-    if len(matches) == 1:
-        comment = comment.replace(matches[0][0], "")
-    return textwrap.dedent(comment) if comment != "" else None
+@dataclass(frozen=True)
+class _Line:
+    """What rosidl_adapter makes of one line of an interface file."""
+
+    is_comment: bool = False
+    trailing: str | None = None  # a field's or constant's own comment
+    nested: str | None = None  # `pkg/msg/Type` of a field of a message type
 
 
-def _split(line: str) -> tuple[str, str | None]:
-    """Return (definition, comment or None) of one line (tabs count as spaces)."""
-    line = line.replace("\t", " ")
-    index = line.find("#")
-    if index < 0:
-        return line, None
-    return line[:index], line[index:].lstrip("#")
-
-
-def _is_comment(line: str) -> bool:
-    return line.startswith("#") and _annotation(line.lstrip("#")) is not None
-
-
-def _trailing(line: str) -> str | None:
-    if line.startswith("#"):
-        return None
-    definition, comment = _split(line)
-    if comment is None or " " not in definition.strip():
-        return None
-    return _annotation(comment)
-
-
-def _nested(line: str, package: str) -> str | None:
-    """Return `pkg/msg/Type` if the line is a field of a message type, else None."""
-    if line.startswith("#") or line in SEPARATORS:
-        return None
-    definition = _split(line)[0].strip()
-    type_string, _, rest = definition.partition(" ")
-    if not rest.strip() or "=" in rest:
-        return None  # no field, or a constant
-    base = type_string.split("[", 1)[0].split("<=", 1)[0]
-    if base in PRIMITIVES:
-        return None
-    full = base if "/" in base else f"{package}/{base}"
-    return full.replace("/", "/msg/", 1)
+def _judge(line: str, package: str) -> _Line:
+    if line in SEPARATORS:
+        return _Line()
+    spec = parse_message_string(package, "X", line)
+    element = (spec.fields or spec.constants or [None])[0]
+    trailing = element.annotations.get("comment") if element is not None else None
+    field_type = str(spec.fields[0].type) if spec.fields else ""
+    return _Line(
+        is_comment=bool(spec.annotations["comment"]),
+        trailing=trailing[0] if trailing else None,
+        nested=field_type.split("[")[0].replace("/", "/msg/") if "/" in field_type else None,
+    )
 
 
 def show_lines(
@@ -80,14 +55,14 @@ def show_lines(
     for raw in read(name).splitlines():
         line = raw.rstrip()
         text = line
+        judged = _judge(line, parts[0])
         if not comments:
-            if not text or _is_comment(line):
+            if not text or judged.is_comment:
                 continue
-            trailing = _trailing(line)
-            if trailing is not None:
-                text = text[: text.find(trailing) - 1].strip()
+            if judged.trailing is not None:
+                text = text[: text.find(judged.trailing) - 1].strip()
         yield "\t" * depth + text if text else ""
-        nested = _nested(line, parts[0])
+        nested = judged.nested
         if nested:
             yield from show_lines(
                 nested,

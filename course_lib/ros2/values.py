@@ -1,18 +1,21 @@
-"""Parameter values and their ROS types, parsed from text exactly as ros2cli parses them (pure)."""
+"""Parameter values and their ROS types; text is parsed by rclpy's own guess, as ros2cli does.
+
+Pure but for `parse_value`, which imports rclpy when called (in the process holding a node).
+"""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Any
 
-import yaml
-
 __all__ = [
     "NOT_SET",
     "TYPE_NAMES",
+    "VALUE_FIELDS",
     "ParamValue",
     "parse_value",
     "type_name",
+    "value_from_msg",
 ]
 
 # rcl_interfaces/msg/ParameterType constants.
@@ -46,6 +49,19 @@ GET_LABELS = {
 }
 
 ARRAY_TYPES = (BYTE_ARRAY, BOOL_ARRAY, INTEGER_ARRAY, DOUBLE_ARRAY, STRING_ARRAY)
+
+# The field of an rcl_interfaces ParameterValue message that holds each type's value.
+VALUE_FIELDS = {
+    BOOL: "bool_value",
+    INTEGER: "integer_value",
+    DOUBLE: "double_value",
+    STRING: "string_value",
+    BYTE_ARRAY: "byte_array_value",
+    BOOL_ARRAY: "bool_array_value",
+    INTEGER_ARRAY: "integer_array_value",
+    DOUBLE_ARRAY: "double_array_value",
+    STRING_ARRAY: "string_array_value",
+}
 
 
 def type_name(ros_type: int) -> str:
@@ -83,42 +99,46 @@ class ParamValue:
         if isinstance(value, (bytes, bytearray)):
             return cls(BYTE_ARRAY, tuple(bytes([b]) for b in value))
         if isinstance(value, (list, tuple)):
-            return _array_of(list(value), str(value), strict=True)
+            return _array_of(list(value))
         raise TypeError(f"no ROS parameter type holds {value!r}")
 
 
-def _array_of(items: list[Any], text: str, *, strict: bool = False) -> ParamValue:
-    for kind, array in ((bool, BOOL_ARRAY), (int, INTEGER_ARRAY), (float, DOUBLE_ARRAY)):
+def _array_of(items: list[Any]) -> ParamValue:
+    for kind, array in (
+        (bool, BOOL_ARRAY),
+        (int, INTEGER_ARRAY),
+        (float, DOUBLE_ARRAY),
+        (str, STRING_ARRAY),
+    ):
         if all(isinstance(v, kind) for v in items):
             return ParamValue(array, tuple(items))
-    if all(isinstance(v, str) for v in items):
-        return ParamValue(STRING_ARRAY, tuple(items))
-    if strict:
-        raise TypeError(f"a ROS array parameter holds one type only, not {items!r}")
-    return ParamValue(STRING, text)
+    raise TypeError(f"a ROS array parameter holds one type only, not {items!r}")
 
 
 def parse_value(text: str) -> ParamValue:
-    """Guess a value's type from text with YAML rules, as `ros2 param set` does (no conversion).
+    """Guess a value's type from text as `ros2 param set` does: with rclpy's own guess.
 
-    `0.2` is a double, `1` an integer, `true` a boolean, `abc` a string and
-    `[1.0, 2.0]` a double array; a list mixing types stays the original string.
+    YAML rules, no conversion: `0.2` is a double, `1` an integer, `true` a boolean, `abc` a
+    string and `[1.0, 2.0]` a double array; a list mixing types stays the original string.
+    A mapping (or a date) is no parameter value: it raises the AssertionError rclpy's
+    message raises when its field checks are on (ROS_PYTHON_CHECK_FIELDS), never reaching
+    the node.
     """
-    try:
-        parsed = yaml.safe_load(text)
-    except yaml.parser.ParserError:
-        parsed = text
-    if isinstance(parsed, bool):
-        return ParamValue(BOOL, parsed)
-    if isinstance(parsed, int):
-        return ParamValue(INTEGER, parsed)
-    if isinstance(parsed, float):
-        return ParamValue(DOUBLE, parsed)
-    if isinstance(parsed, list):
-        return _array_of(parsed, text)
-    if parsed is None:
-        return ParamValue(STRING, text)
-    if not isinstance(parsed, str):
-        # ros2cli crashes here (a mapping is no parameter value); keep its error's words.
+    # rclpy only here: values are parsed in the process that holds the node, never to render.
+    from rclpy.parameter import get_parameter_value
+
+    value = value_from_msg(get_parameter_value(text))
+    if value.type == STRING and not isinstance(value.value, str):
         raise AssertionError("The 'string_value' field must be of type 'str'")
-    return ParamValue(STRING, parsed)
+    return value
+
+
+def value_from_msg(msg: Any) -> ParamValue:
+    """Convert an rcl_interfaces ParameterValue into a ParamValue (arrays as tuples)."""
+    field = VALUE_FIELDS.get(msg.type)
+    if field is None:
+        return ParamValue(msg.type)
+    raw = getattr(msg, field)
+    if msg.type in ARRAY_TYPES:
+        raw = tuple(raw.tolist() if hasattr(raw, "tolist") else raw)
+    return ParamValue(msg.type, raw)

@@ -11,6 +11,7 @@ import contextlib
 import logging
 import os
 import threading
+import time
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -56,14 +57,83 @@ def session_env(domain_id: int, base: Mapping[str, str] | None = None) -> dict[s
     return env
 
 
-class Session:
-    """Own a ROS domain, a spinning client node and the child processes of this kernel."""
+class SpinningNode:
+    """One rclpy node in a context of its own, spun by one executor thread until close().
 
-    def __init__(self, *, domain_id: int | None = None) -> None:
+    The one way the course builds a client node: the kernel's Session and the `ros2`
+    command's DirectNode. No signal handlers (the kernel and the command keep theirs), no
+    parameter services.
+    """
+
+    def __init__(
+        self,
+        name: str,
+        *,
+        domain_id: int,
+        owner: str,
+        thread_name: str,
+        parameter_overrides: Sequence[Any] = (),
+    ) -> None:
+        """Start the node `name` in `domain_id`; `owner` names who it serves in the log."""
         import rclpy
         from rclpy.executors import SingleThreadedExecutor
         from rclpy.signals import SignalHandlerOptions
 
+        self.context = rclpy.Context()
+        rclpy.init(
+            context=self.context,
+            domain_id=domain_id,
+            signal_handler_options=SignalHandlerOptions.NO,
+        )
+        self.born = time.monotonic()  # the DDS participant comes with the first node
+        self.node = rclpy.create_node(
+            name,
+            context=self.context,
+            start_parameter_services=False,
+            parameter_overrides=list(parameter_overrides),
+        )
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self.spin_error: BaseException | None = None  # why the spin thread stopped, if it did
+        self.closing = False  # set first when the owner closes: spin errors are expected then
+        self._owner = owner
+        self._thread = threading.Thread(target=self._spin, name=thread_name, daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        try:
+            self.executor.spin()
+        except Exception as err:
+            if self.closing or not self.context.ok():
+                return  # closing: spin ends with the context
+            self.spin_error = err
+            _log.error("%s ROS thread stopped", self._owner, exc_info=err)
+
+    def wait_future(self, future: Any, timeout: float) -> Any:
+        """Wait for an rclpy future completed by the spin thread; raise TimeoutError."""
+        done = threading.Event()
+        future.add_done_callback(lambda _f: done.set())
+        if not done.wait(timeout):
+            future.cancel()
+            raise TimeoutError(f"no answer within {timeout:g} s")
+        return future.result()
+
+    def close(self) -> None:
+        """Tear down in the order that never aborts the interpreter; idempotent."""
+        self.closing = True
+        with contextlib.suppress(Exception):
+            self.executor.shutdown(timeout_sec=2.0)
+        self._thread.join(timeout=2.0)
+        with contextlib.suppress(Exception):
+            self.node.destroy_node()
+        with contextlib.suppress(Exception):
+            self.context.try_shutdown()
+
+
+class Session:
+    """Own a ROS domain, a spinning client node and the child processes of this kernel."""
+
+    def __init__(self, *, domain_id: int | None = None) -> None:
         reap_orphans()
         base = _explicit_env()
         if domain_id is not None:
@@ -82,38 +152,23 @@ class Session:
         self._children: list[ChildProcess] = []
         self._lock = threading.Lock()
         self._closed = False
-        self.spin_error: BaseException | None = None  # why the spin thread stopped, if it did
-        self.context = rclpy.Context()
-        rclpy.init(
-            context=self.context,
-            domain_id=self.domain_id,
-            signal_handler_options=SignalHandlerOptions.NO,
-        )
-        self.node = rclpy.create_node(
+        self._ros = SpinningNode(
             f"_course_client_{os.getpid()}",
-            context=self.context,
-            start_parameter_services=False,
+            domain_id=self.domain_id,
+            owner="the session's",
+            thread_name="course-ros-spin",
         )
-        self.executor = SingleThreadedExecutor(context=self.context)
-        self.executor.add_node(self.node)
-        self._spin_thread = threading.Thread(
-            target=self._spin, name="course-ros-spin", daemon=True
-        )
-        self._spin_thread.start()
+        self.context, self.node = self._ros.context, self._ros.node
         atexit.register(self.close)
 
     def __repr__(self) -> str:
         state = "closed" if self._closed else f"{len(self.children)} children"
         return f"<Session domain={self.domain_id} {state}>"
 
-    def _spin(self) -> None:
-        try:
-            self.executor.spin()
-        except Exception as err:
-            if self._closed or not self.context.ok():
-                return  # the session is closing: spin ends with the context
-            self.spin_error = err
-            _log.error("the session's ROS thread stopped", exc_info=err)
+    @property
+    def spin_error(self) -> BaseException | None:
+        """Why the session's ROS thread stopped, if it did."""
+        return self._ros.spin_error
 
     @property
     def closed(self) -> bool:
@@ -134,12 +189,7 @@ class Session:
     def wait_future(self, future: Any, timeout: float) -> Any:
         """Wait for an rclpy future completed by the spin thread; raise TimeoutError."""
         self._check_open()
-        done = threading.Event()
-        future.add_done_callback(lambda _f: done.set())
-        if not done.wait(timeout):
-            future.cancel()
-            raise TimeoutError(f"no answer within {timeout:g} s")
-        return future.result()
+        return self._ros.wait_future(future, timeout)
 
     def spawn(
         self,
@@ -190,14 +240,9 @@ class Session:
             return
         self._closed = True
         atexit.unregister(self.close)
+        self._ros.closing = True
         self.stop_children()
-        with contextlib.suppress(Exception):
-            self.executor.shutdown(timeout_sec=2.0)
-        self._spin_thread.join(timeout=2.0)
-        with contextlib.suppress(Exception):
-            self.node.destroy_node()
-        with contextlib.suppress(Exception):
-            self.context.try_shutdown()
+        self._ros.close()
         self._lease.release()
         if os.environ.get(SESSION_DOMAIN_ENV) == str(self.domain_id):
             os.environ.pop(DOMAIN_ENV, None)

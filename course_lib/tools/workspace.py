@@ -15,6 +15,7 @@ import sysconfig
 from collections.abc import Mapping
 from pathlib import Path
 
+from ..core.env_paths import prepend
 from ..core.paths import PACKAGE_DIR, REPO_ROOT, ROSJECT_DIR, venv_bin_dir
 
 __all__ = ["BUILD_STAMP", "build_env", "build_workspace", "cmake_args"]
@@ -24,18 +25,13 @@ CHECK_PLATFORM = REPO_ROOT / "scripts" / "check_platform.py"  # also names a mis
 WHEEL_FIXUPS = PACKAGE_DIR / "cmake" / "wheel_fixups.cmake"
 
 
-def _prepend(value: str, existing: str | None) -> str:
-    parts = [value] + [p for p in (existing or "").split(os.pathsep) if p and p != value]
-    return os.pathsep.join(parts)
-
-
 def build_env(base: Mapping[str, str] | None = None) -> dict[str, str]:
     """Return `base` with this virtualenv as the underlay colcon and CMake build against."""
     env = dict(os.environ if base is None else base)
     prefix = str(Path(sys.prefix))
     for variable in ("AMENT_PREFIX_PATH", "CMAKE_PREFIX_PATH"):
-        env[variable] = _prepend(prefix, env.get(variable))
-    env["PATH"] = _prepend(str(venv_bin_dir()), env.get("PATH"))  # the pinned cmake
+        env[variable] = prepend(prefix, env.get(variable))
+    env["PATH"] = prepend(str(venv_bin_dir()), env.get("PATH"))  # the pinned cmake
     # colcon's default adds `-l<cores>`, which compiles one file at a time on a busy machine.
     env.setdefault("MAKEFLAGS", f"-j{os.cpu_count() or 1}")
     return env

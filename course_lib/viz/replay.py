@@ -7,6 +7,7 @@ server. The same frames always give the same bytes (object ids are derived from 
 from __future__ import annotations
 
 import base64
+import html
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -15,7 +16,7 @@ from typing import Any
 import meshcat
 import mujoco
 import umsgpack
-from meshcat.animation import Animation
+from meshcat.animation import Animation, AnimationFrameVisualizer
 from meshcat.commands import SetAnimation
 
 from .scene import body_paths, body_transform, camera_commands, moving_bodies, scene_commands
@@ -48,16 +49,9 @@ def _animation(model: mujoco.MjModel, frames: Sequence[ReplayFrame], fps: int) -
         data.qpos[:] = frame.qpos
         mujoco.mj_kinematics(model, data)
         for body in moving_bodies(model):
-            at = animation.at_frame(_Anchor(paths[body]), index)
+            at = AnimationFrameVisualizer(animation, paths[body], index)
             at.set_transform(body_transform(data, body))
     return animation
-
-
-class _Anchor:
-    """The one attribute Animation.at_frame reads from a visualizer."""
-
-    def __init__(self, path: Any) -> None:
-        self.path = path
 
 
 def _command_js(command: Any) -> str:
@@ -80,7 +74,7 @@ def replay_html(
     body = "".join(_command_js(c) for c in commands)
     return (
         "<!DOCTYPE html>\n<html>\n<head><meta charset=utf-8>"
-        f"<title>{title}</title>\n<style>body {{margin: 0}} #meshcat-pane "
+        f"<title>{html.escape(title)}</title>\n<style>body {{margin: 0}} #meshcat-pane "
         "{width: 100vw; height: 100vh; overflow: hidden}</style></head>\n<body>\n"
         f'<div id="meshcat-pane"></div>\n<script>\n{script}\n</script>\n<script>\n'
         "function bytes(b64) { return Uint8Array.from(atob(b64), c => c.charCodeAt(0)); }\n"

@@ -16,6 +16,8 @@ import numpy as np
 from meshcat.commands import SetObject, SetProperty, SetTransform
 from meshcat.path import Path
 
+from .quaternions import pose_matrix
+
 __all__ = [
     "ROOT",
     "body_paths",
@@ -44,15 +46,6 @@ def body_paths(model: mujoco.MjModel) -> list[Path]:
 def moving_bodies(model: mujoco.MjModel) -> list[int]:
     """Return the ids of bodies that can move (not welded to the world)."""
     return [b for b in range(1, model.nbody) if model.body_weldid[b] != 0]
-
-
-def _pose_matrix(pos: np.ndarray, quat: np.ndarray) -> np.ndarray:
-    rot = np.zeros(9)
-    mujoco.mju_quat2Mat(rot, np.asarray(quat, dtype=float))
-    matrix = np.eye(4)
-    matrix[:3, :3] = rot.reshape(3, 3)
-    matrix[:3, 3] = pos
-    return matrix
 
 
 def body_transform(data: mujoco.MjData, body: int) -> np.ndarray:
@@ -123,7 +116,7 @@ def scene_commands(model: mujoco.MjModel, data: mujoco.MjData) -> list[Any]:
         command = SetObject(geometry, material, path)
         _fix_id(command.object, key + "#object")
         commands.append(command)
-        local = _pose_matrix(model.geom_pos[geom], model.geom_quat[geom]) @ intrinsic
+        local = pose_matrix(model.geom_pos[geom], model.geom_quat[geom]) @ intrinsic
         commands.append(SetTransform(local, path))
     for body in range(1, model.nbody):
         commands.append(SetTransform(body_transform(data, body), paths[body]))

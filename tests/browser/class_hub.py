@@ -12,15 +12,14 @@ import hashlib
 import os
 import pwd
 import signal
-import socket
 import subprocess
 import tempfile
-import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 from course_lib.core.paths import REPO_ROOT
+from course_lib.core.ports import free_port
 from course_lib.processes.children import ChildProcess, spawn
 from course_lib.tools.testing import independent_env
 
@@ -31,16 +30,9 @@ __all__ = [
     "server_token",
     "start_prebuild",
     "uid_of",
-    "wait_until",
 ]
 
 BUILD_TIMEOUT_S = 1200.0  # the first build of the learners' environment (pip, colcon)
-
-
-def _free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 def uid_of(name: str) -> int | None:
@@ -108,7 +100,7 @@ class ClassHub:
             remove_account(name)  # a leftover of an interrupted run: start from nothing
         self.environment = hub_environment()
         self.state = folder / "state"
-        self.port = _free_port()
+        self.port = free_port()
         self.config = folder / "hub.yaml"
         self.config.write_text(
             f"learners: [{', '.join(learners)}]\nadmins: [{', '.join(admins)}]\n"
@@ -158,16 +150,6 @@ class ClassHub:
         for name in (*self.learners, *self.admins):
             remove_account(name)
         return {name: found for name, found in left.items() if found}
-
-
-def wait_until(test: Any, timeout: float, step: float = 0.5) -> bool:
-    """Poll `test()` until it is true or `timeout` seconds passed; return its last value."""
-    deadline = time.monotonic() + timeout
-    while True:
-        value = test()
-        if value or time.monotonic() > deadline:
-            return bool(value)
-        time.sleep(step)
 
 
 def server_token(name: str) -> str:

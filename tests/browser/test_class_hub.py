@@ -17,12 +17,14 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from class_hub import ClassHub, processes_of, server_token, uid_of, wait_until
+from class_hub import ClassHub, processes_of, server_token, uid_of
 from lab_server import ARTIFACTS
 from notebook_ui import add_cell, run_all_cells, run_cell, wait_all_ran
 from pixels import is_blank
 from terminal import Terminal
 from view import MOVED, VIEW, change_within, shot
+
+from course_lib.core.waiting import wait_until
 
 pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 

@@ -14,6 +14,7 @@ pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark
 RESTARTED = ["07_move_the_robot.ipynb", "11_beyond_the_tutorial.ipynb"]
 
 
+@pytest.mark.timeout(1800)  # every lesson, Run All, two restarts: several minutes
 def test_every_lesson_in_order_then_two_restarts(lab_page, artifacts: Path) -> None:
     walker = Walker(lab_page, artifacts)
     for name in LESSONS:

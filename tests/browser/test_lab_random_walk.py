@@ -23,6 +23,7 @@ SOAK_STEPS = 100
 SHORT_SEED = 762208
 
 
+@pytest.mark.timeout(1200)  # ten steps, each may restart a kernel
 def test_a_short_random_walk(lab_page, artifacts: Path) -> None:
     seed, steps = walk_settings(SHORT_STEPS, SHORT_SEED)
     walker = Walker(lab_page, artifacts)
@@ -31,6 +32,7 @@ def test_a_short_random_walk(lab_page, artifacts: Path) -> None:
 
 
 @pytest.mark.skipif(not os.environ.get("WALK_SOAK"), reason="a soak: `make soak` runs it")
+@pytest.mark.timeout(0)  # as long as WALK_STEPS takes; run by hand, never in CI
 def test_soak_random_walk(lab_page, artifacts: Path) -> None:
     seed, steps = walk_settings(SOAK_STEPS)
     walker = Walker(lab_page, artifacts)

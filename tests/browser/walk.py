@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from lab_graph import graph_problems
+from lab_nodes import node_processes
 from lab_ui import LabPage
 from lesson_checks import LESSONS, PROBES, cell_problems, lesson_number, run_problems
 from terminal import Terminal
@@ -85,6 +86,7 @@ class Walker:
     defects: list[str] = field(default_factory=list)
     steps: int = 0
     _at: str = "start"  # the step running, to name where a defect was found
+    _nodes: list[str] = field(default_factory=list)  # the lab's node processes, last seen
 
     # --- the steps ------------------------------------------------------------------------------
     def open(self, name: str) -> None:
@@ -157,6 +159,14 @@ class Walker:
         except Exception as exc:  # a Playwright timeout or a closed page: a defect too
             self._record([f"{type(exc).__name__}: {exc}"])
         self.log(f"  ({time.monotonic() - started:.0f} s)")
+        self._log_nodes()
+
+    def _log_nodes(self) -> None:
+        """Log the lab's node processes when a step changed them (who started which)."""
+        nodes = node_processes(self.ui.lab)
+        if nodes != self._nodes:
+            self._nodes = nodes
+            self.log(f"  nodes: {'; '.join(nodes) or 'none'}")
 
     def _check_run(self, name: str) -> None:
         self._record(run_problems(name, self.ui.cells()))

@@ -14,7 +14,6 @@ import os
 import re
 import secrets
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -23,6 +22,7 @@ from typing import Any
 
 import requests
 
+from course_lib.core.ports import free_port
 from course_lib.hub.progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
 from course_lib.hub.proxy import install_proxy
 from course_lib.hub.tied import tied_command
@@ -42,13 +42,6 @@ def proxy_command(cache: Path) -> str:
     with open(cache / ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         return str(install_proxy(cache))
-
-
-def free_port() -> int:
-    """Return a TCP port free on 127.0.0.1 right now."""
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return probe.getsockname()[1]
 
 
 def _die_with_parent() -> None:

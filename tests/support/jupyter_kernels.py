@@ -13,7 +13,10 @@ import psutil
 from jupyter_client.manager import KernelManager
 
 from course_lib.core.paths import REPO_ROOT
-from course_lib.processes.children import OWNER_ENV, pid_alive, process_environ
+from course_lib.core.procfs import environ as process_environ
+from course_lib.core.procfs import pid_alive
+from course_lib.core.waiting import wait_until
+from course_lib.processes.children import OWNER_ENV
 from course_lib.tools.testing import independent_env
 
 __all__ = [
@@ -57,7 +60,7 @@ class Kernel:
     @property
     def pid(self) -> int:
         """Return the kernel's process id."""
-        return self.manager.provisioner.process.pid  # type: ignore[union-attr]
+        return self.manager.provisioner.pid  # type: ignore[union-attr]
 
     def submit(self, code: str) -> str:
         """Start executing `code` as one cell; return the message id for collect()."""
@@ -124,12 +127,8 @@ def course_pids(owner_pid: int) -> list[int]:
 
 def wait_gone(pids: list[int], timeout: float) -> list[int]:
     """Wait until none of `pids` runs; return those still running at the timeout."""
-    deadline = time.monotonic() + timeout
-    while True:
-        left = [pid for pid in pids if pid_alive(pid)]
-        if not left or time.monotonic() > deadline:
-            return left
-        time.sleep(0.02)  # polling /proc: the condition has no event to wait on
+    wait_until(lambda: not any(pid_alive(pid) for pid in pids), timeout)  # /proc: no event
+    return [pid for pid in pids if pid_alive(pid)]
 
 
 def process_tree(pid: int) -> list[int]:

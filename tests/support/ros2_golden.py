@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
+from course_lib.core.waiting import wait_until
 from course_lib.ros2.api import nodes_and_params as api
-from course_lib.ros2.node.client import wait_until
 from course_lib.session.session import Session, get_session
 
 GOLDEN = Path(__file__).resolve().parents[1] / "golden" / "ros2"

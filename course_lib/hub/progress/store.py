@@ -8,7 +8,9 @@ is written.
 
 from __future__ import annotations
 
+import contextlib
 import sqlite3
+from collections.abc import Iterator
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -95,13 +97,28 @@ class ProgressStore:
         stamp = (when or datetime.now(UTC)).astimezone(UTC).isoformat(timespec="seconds")
         key = (record.user, record.lesson)
         try:
-            with self._db:  # BEGIN ... COMMIT, or ROLLBACK on error
+            with self._transaction():
                 if record.passed:
                     self._db.execute(_UPSERT_PASSED, (*key, stamp))
                 else:
                     self._db.execute(_UPSERT_FAILED, (*key, record.failed, stamp))
         except sqlite3.Error as error:
             raise StoreError(f"cannot write to {self.path}: {error}") from None
+
+    @contextlib.contextmanager
+    def _transaction(self) -> Iterator[None]:
+        """BEGIN IMMEDIATE ... COMMIT, or ROLLBACK on error.
+
+        The connection is in autocommit mode (isolation_level=None), where `with connection:`
+        begins nothing: the transaction is opened here, taking the write lock at once.
+        """
+        self._db.execute("BEGIN IMMEDIATE")
+        try:
+            yield
+        except BaseException:
+            self._db.execute("ROLLBACK")
+            raise
+        self._db.execute("COMMIT")
 
     def states(self) -> list[LessonState]:
         """Return every stored state, by user then lesson."""

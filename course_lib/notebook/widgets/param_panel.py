@@ -11,12 +11,11 @@ import threading
 from pathlib import Path
 from typing import Any
 
+from ...ros2.values import BOOL, DOUBLE, INTEGER
 from .events import changes_of, subscribe_parameter_events
 from .yaml_file import params_yaml, set_command, write_params_file
 
 __all__ = ["ParameterPanel"]
-
-_DOUBLE, _INTEGER, _BOOL, _STRING = 3, 2, 1, 4
 
 
 def _widget_for(desc: Any, value: Any) -> Any:
@@ -31,7 +30,7 @@ def _widget_for(desc: Any, value: Any) -> Any:
         "continuous_update": False,
     }
     rng = desc.range
-    if desc.type == _DOUBLE and rng is not None:
+    if desc.type == DOUBLE and rng is not None:
         step = rng.step or (rng.to_value - rng.from_value) / 100
         return widgets.FloatSlider(
             value=value,
@@ -41,15 +40,15 @@ def _widget_for(desc: Any, value: Any) -> Any:
             readout_format=".2f",
             **common,
         )
-    if desc.type == _INTEGER and rng is not None:
+    if desc.type == INTEGER and rng is not None:
         return widgets.IntSlider(
             value=value, min=rng.from_value, max=rng.to_value, step=rng.step or 1, **common
         )
-    if desc.type == _DOUBLE:
+    if desc.type == DOUBLE:
         return widgets.FloatText(value=value, **common)
-    if desc.type == _INTEGER:
+    if desc.type == INTEGER:
         return widgets.IntText(value=value, **common)
-    if desc.type == _BOOL:
+    if desc.type == BOOL:
         common.pop("continuous_update")
         return widgets.Checkbox(value=value, **common)
     return widgets.Text(value=str(value), **common)

@@ -45,8 +45,8 @@ def call_service(
     service: str, srv_type: str, values: dict | None = None, *, timeout: float = 10.0
 ) -> Any:
     """Call a service once with a request filled from `values`; return the response message."""
+    from ...core.waiting import wait_until
     from ..msgfill import set_message_fields
-    from ..node.client import wait_until
     from ..verbs.service_call import service_class
     from .nodes_and_params import client
 
@@ -89,8 +89,8 @@ def topic_publish(
     topic: str, msg_type: str, values: dict | None = None, *, wait: float = 5.0
 ) -> Any:
     """Publish one message (after waiting up to `wait` s for a subscriber); return it."""
+    from ...core.waiting import wait_until
     from ..msgfill import import_type, set_message_fields
-    from ..node.client import wait_until
     from .nodes_and_params import client
 
     msg_class = import_type(msg_type, "msg")

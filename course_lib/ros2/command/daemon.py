@@ -21,7 +21,7 @@ import time
 from collections.abc import Mapping
 from typing import Any
 
-from ...processes.children import OWNER_ENV, ChildProcess, owner_tag, spawn
+from ...processes.children import OWNER_ENV, ChildProcess, owner_alive, spawn
 from ..node.connect import IDLE_ENV, SHUTDOWN, daemon_argv, daemon_lock, daemon_socket
 from ..verbs.console import StreamingConsole
 from .commands import Context, execute
@@ -127,14 +127,6 @@ def _claim(domain: int) -> socket.socket | None:
     return server
 
 
-def _owner_alive(tag: str | None) -> bool:
-    """Return whether the process named by an owner tag (`pid:start time`) still runs."""
-    if not tag:
-        return True
-    pid, _, _started = tag.partition(":")
-    return pid.isdigit() and owner_tag(int(pid)) == tag
-
-
 def _watch(owner: str | None) -> int | None:
     """Return a pidfd that becomes readable when the owner exits (None: poll instead)."""
     pid = owner.partition(":")[0] if owner else ""
@@ -144,7 +136,7 @@ def _watch(owner: str | None) -> int | None:
         fd = os.pidfd_open(int(pid))
     except OSError:
         return None
-    if not _owner_alive(owner):  # the pid was reused before we opened it
+    if not owner or not owner_alive(owner):  # the pid was reused before we opened it
         os.close(fd)
         return None
     return fd
@@ -163,7 +155,7 @@ def _serve_forever(
     waited = [server] + ([watch] if watch is not None else [])
     last = time.monotonic()
     try:
-        while not stop.is_set() and _owner_alive(owner):
+        while not stop.is_set() and (not owner or owner_alive(owner)):
             if idle_s is not None and time.monotonic() - last >= idle_s:
                 return
             ready, _, _ = select.select(waited, [], [], _ACCEPT_TICK_S)

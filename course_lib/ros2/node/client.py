@@ -17,8 +17,9 @@ from rclpy.action.graph import (
 )
 from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
 
+from ...core.waiting import wait_until
 from ..results import Descriptor, NodeInfo, NodeName, ParamRange, SetResult, TopicInfo
-from ..values import ParamValue
+from ..values import VALUE_FIELDS, ParamValue, value_from_msg
 from .discovery import (
     UNKNOWN_NODE,
     GraphView,
@@ -43,17 +44,6 @@ FIRST_ATTEMPT_S = 0.5
 # Services whose requests change the node: sent exactly once, after a probe (see _call).
 _WRITES = {"set_parameters": SetParameters.Request}
 _POLL_S = 0.02
-_VALUE_FIELDS = {
-    ParameterType.PARAMETER_BOOL: "bool_value",
-    ParameterType.PARAMETER_INTEGER: "integer_value",
-    ParameterType.PARAMETER_DOUBLE: "double_value",
-    ParameterType.PARAMETER_STRING: "string_value",
-    ParameterType.PARAMETER_BYTE_ARRAY: "byte_array_value",
-    ParameterType.PARAMETER_BOOL_ARRAY: "bool_array_value",
-    ParameterType.PARAMETER_INTEGER_ARRAY: "integer_array_value",
-    ParameterType.PARAMETER_DOUBLE_ARRAY: "double_array_value",
-    ParameterType.PARAMETER_STRING_ARRAY: "string_array_value",
-}
 _SERVICES = {
     "list_parameters": ListParameters,
     "get_parameters": GetParameters,
@@ -70,21 +60,10 @@ class ServiceCallError(RuntimeError):
         return str(self)
 
 
-def value_from_msg(msg: ParameterValueMsg) -> ParamValue:
-    """Convert an rcl_interfaces ParameterValue into a ParamValue."""
-    field = _VALUE_FIELDS.get(msg.type)
-    if field is None:
-        return ParamValue(msg.type)
-    raw = getattr(msg, field)
-    if msg.type >= ParameterType.PARAMETER_BYTE_ARRAY:
-        raw = tuple(raw.tolist() if hasattr(raw, "tolist") else raw)
-    return ParamValue(msg.type, raw)
-
-
 def value_to_msg(value: ParamValue) -> ParameterValueMsg:
     """Convert a ParamValue into an rcl_interfaces ParameterValue."""
     msg = ParameterValueMsg(type=value.type)
-    field = _VALUE_FIELDS.get(value.type)
+    field = VALUE_FIELDS.get(value.type)
     if field is not None:
         raw = value.value
         setattr(msg, field, list(raw) if value.type >= ParameterType.PARAMETER_BYTE_ARRAY else raw)
@@ -115,16 +94,6 @@ def _topics(pairs: Sequence[tuple[str, Sequence[str]]], include_hidden: bool) ->
     return tuple(
         TopicInfo(n, tuple(t)) for n, t in pairs if include_hidden or not _is_hidden_name(n)
     )
-
-
-def wait_until(predicate: Callable[[], bool], timeout: float) -> bool:
-    """Poll `predicate` until true or `timeout` seconds passed; return its last value."""
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() >= deadline:
-            return predicate()
-        time.sleep(_POLL_S)
-    return True
 
 
 class RosClient:

@@ -17,8 +17,10 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TextIO
 
+from ...core import procfs
 from ...core.paths import runtime_dir
-from ...processes.children import OWNER_ENV, owner_tag, pid_alive, process_environ
+from ...core.waiting import wait_until
+from ...processes.children import OWNER_ENV, owner_tag
 
 __all__ = [
     "DaemonUnavailable",
@@ -80,7 +82,7 @@ def _owner_pid() -> int:
     if lab is not None:
         return lab
     leader = os.getsid(0)
-    return leader if leader not in (0, os.getpid()) and pid_alive(leader) else os.getppid()
+    return leader if leader not in (0, os.getpid()) and procfs.pid_alive(leader) else os.getppid()
 
 
 def spawn_detached(env: Mapping[str, str]) -> None:
@@ -163,11 +165,13 @@ def stop_daemon(domain_id: int | str, *, timeout: float = STOP_TIMEOUT_S) -> boo
         sock.sendall(json.dumps({"control": SHUTDOWN}).encode() + b"\n")
         reply = json.loads(reader.readline() or "{}")
     pid = int(reply.get("pid", 0))
-    deadline = time.monotonic() + timeout
-    while pid and pid_alive(pid):
-        if time.monotonic() >= deadline:
-            raise TimeoutError("Timed out waiting for daemon to shutdown")
-        time.sleep(0.01)
+    if pid:
+        wait_until(
+            lambda: not procfs.pid_alive(pid),
+            timeout,
+            interval=0.01,
+            message="Timed out waiting for daemon to shutdown",
+        )
     return True
 
 
@@ -195,13 +199,9 @@ def request(
 
 def daemon_pids(domain_id: int | str) -> list[int]:
     """Return the pids of this host's daemon processes serving `domain_id` (whoever owns them)."""
-    pids = []
-    for entry in Path("/proc").iterdir():
-        try:
-            argv = (entry / "cmdline").read_bytes().split(b"\0") if entry.name.isdigit() else []
-        except OSError:
-            continue
-        is_daemon = b"course_lib.ros2.command.daemon" in argv
-        if is_daemon and process_environ(int(entry.name)).get("ROS_DOMAIN_ID") == str(domain_id):
-            pids.append(int(entry.name))
-    return pids
+    return [
+        pid
+        for pid in procfs.pids()
+        if "course_lib.ros2.command.daemon" in (procfs.cmdline(pid) or ())
+        and procfs.environ(pid).get("ROS_DOMAIN_ID") == str(domain_id)
+    ]

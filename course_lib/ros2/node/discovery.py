@@ -17,10 +17,12 @@ most that. The counting and the rules are pure; reading /proc is one small funct
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
+
+from ...core import procfs
 
 __all__ = [
     "DEFAULT_SPIN_TIME",
@@ -87,29 +89,16 @@ def participant_prefix(endpoint_gid: Sequence[int]) -> tuple[int, ...]:
     return tuple(endpoint_gid[:12])
 
 
-def bound_participants(domain_id: int, udp_tables: Sequence[str]) -> int:
-    """Count the participants of `domain_id` bound on this host, from /proc/net/udp text."""
+def bound_participants(domain_id: int, ports: Iterable[int]) -> int:
+    """Count the participants of `domain_id` among the UDP ports bound on this host."""
     base = 7400 + 250 * domain_id
-    ports = set()
-    for table in udp_tables:
-        for line in table.splitlines()[1:]:
-            fields = line.split()
-            if len(fields) > 1 and ":" in fields[1]:
-                offset = int(fields[1].rsplit(":", 1)[1], 16) - base
-                if 10 <= offset < 250 and offset % 2 == 0:
-                    ports.add(offset)
-    return len(ports)
+    return len({port - base for port in ports if 10 <= port - base < 250 and port % 2 == 0})
 
 
 def read_bound_participants(domain_id: int) -> int | None:
     """Return how many participants of `domain_id` this host has (None without /proc)."""
-    tables = []
-    for name in ("/proc/net/udp", "/proc/net/udp6"):
-        try:
-            tables.append(Path(name).read_text())
-        except OSError:
-            continue
-    return bound_participants(domain_id, tables) if tables else None
+    ports = procfs.bound_udp_ports()
+    return None if ports is None else bound_participants(domain_id, ports)
 
 
 def _seconds(element: Any) -> float | None:

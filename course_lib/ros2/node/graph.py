@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from .client import YOUNG_CLIENT_S, wait_until
+from ...core.waiting import wait_until
+from .client import YOUNG_CLIENT_S
 
 __all__ = ["COURSE_CLIENTS", "lookup", "own_prefix", "services"]
 

@@ -110,7 +110,7 @@ def info(args: argparse.Namespace, ctx: Context) -> Any:
         return f"Unknown topic '{args.topic_name}'"
     node, name = ctx.client.node, args.topic_name
     if args.verbose:  # an endpoint seen before its node's name: the name follows
-        from ..node.client import wait_until  # rclpy: only where the command really runs
+        from ...core.waiting import wait_until  # rclpy: only where the command really runs
 
         wait_until(lambda: _all_named(node, name), NAME_WAIT_S)
     end = "\n\n" if args.verbose else "\n"

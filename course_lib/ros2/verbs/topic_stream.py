@@ -8,8 +8,9 @@ import queue
 import time
 from typing import Any
 
+from ...core.waiting import wait_until
 from ..msgyaml import message_to_yaml
-from ..node.client import DISCOVERY_WAIT_S, YOUNG_CLIENT_S, wait_until
+from ..node.client import DISCOVERY_WAIT_S, YOUNG_CLIENT_S
 from . import options
 from .context import Context
 

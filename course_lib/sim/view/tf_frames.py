@@ -11,10 +11,10 @@ from typing import Any
 
 import meshcat.geometry as g
 import mujoco
-import numpy as np
 from meshcat.commands import SetObject, SetProperty, SetTransform
 from meshcat.path import Path
 
+from ...viz.quaternions import pose_matrix
 from ..world.frames import BASE_FRAME, ODOM_FRAME, FrameJoint, Transform, joint_transform
 from ..world.model import BASE_BODY
 
@@ -23,15 +23,6 @@ __all__ = ["TF_ROOT", "TfView"]
 TF_ROOT = ("meshcat", "tf")
 _ODOM_SCALE_M = 0.25
 _FRAME_SCALE_M = 0.08
-
-
-def _matrix(transform: Transform) -> np.ndarray:
-    rotation = np.zeros(9)
-    mujoco.mju_quat2Mat(rotation, np.asarray(transform.quat, dtype=float))
-    matrix = np.eye(4)
-    matrix[:3, :3] = rotation.reshape(3, 3)
-    matrix[:3, 3] = transform.xyz
-    return matrix
 
 
 class TfView:
@@ -52,7 +43,10 @@ class TfView:
         for frame, path in self.paths.items():
             scale = _ODOM_SCALE_M if frame == ODOM_FRAME else _FRAME_SCALE_M
             commands.append(SetObject(g.triad(scale), path=path))
-        commands += [SetTransform(_matrix(j.origin), self.paths[j.child]) for j in self.joints]
+        commands += [
+            SetTransform(pose_matrix(j.origin.xyz, j.origin.quat), self.paths[j.child])
+            for j in self.joints
+        ]
         commands.append(SetProperty("visible", False, Path(TF_ROOT)))
         return commands
 
@@ -62,8 +56,10 @@ class TfView:
         x, y = float(data.qpos[at]), float(data.qpos[at + 1])
         w, qx, qy, qz = (float(v) for v in data.qpos[at + 3 : at + 7])
         base = Transform((x, y, 0.0), (w, qx, qy, qz))
-        commands = [SetTransform(_matrix(base), self.paths[BASE_FRAME])]
+        commands = [SetTransform(pose_matrix(base.xyz, base.quat), self.paths[BASE_FRAME])]
         for joint, address in self._wheels:
             moved = joint_transform(joint, float(data.qpos[address]))
-            commands.append(SetTransform(_matrix(moved), self.paths[joint.child]))
+            commands.append(
+                SetTransform(pose_matrix(moved.xyz, moved.quat), self.paths[joint.child])
+            )
         return commands

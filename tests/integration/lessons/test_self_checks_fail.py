@@ -6,6 +6,7 @@ passes was earned by this lesson's own node, robot and files.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -93,7 +94,11 @@ def test_lesson2_passes_when_its_node_is_gone_and_another_has_the_name(stop_node
         assert "the one running now is another: /param_vel_node (pid" in gone.what, gone.what
     finally:
         os.killpg(other.pid, signal.SIGINT)  # Ctrl-C reaches the terminal's whole job
-        other.wait(timeout=10)
+        try:
+            other.wait(timeout=10)
+        finally:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(other.pid, signal.SIGKILL)  # whatever of the job is left
 
 
 def test_lesson3_fails_without_the_world() -> None:

@@ -10,18 +10,18 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
-import time
 from collections.abc import Iterator
 
 import pytest
 
 from course_lib.core.paths import runtime_dir
+from course_lib.core.procfs import pid_namespace
+from course_lib.core.waiting import wait_until
 from course_lib.processes.children import (
     NAME_ENV,
     OWNER_ENV,
     OWNER_NS_ENV,
     owner_tag,
-    pid_namespace,
     reap_orphans,
     spawn,
 )
@@ -45,15 +45,6 @@ def started() -> Iterator[list[subprocess.Popen]]:
         proc.communicate()
 
 
-def wait_for(predicate, timeout: float = 10.0) -> bool:  # type: ignore[no-untyped-def]
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() > deadline:
-            return False
-        time.sleep(0.02)
-    return True
-
-
 def test_a_spawned_child_is_the_courses_and_named() -> None:
     child = spawn(SLEEP, name="my-node")
     try:
@@ -72,7 +63,7 @@ def test_an_inherited_owner_tag_is_not_the_courses(started) -> None:
         env={**independent_env(), OWNER_ENV: owner_tag(), NAME_ENV: "jupyterlab"},
     )
     started.append(shell)
-    assert wait_for(lambda: any(read_process(p) for p in _children(shell.pid)))
+    assert wait_until(lambda: any(read_process(p) for p in _children(shell.pid)), 10.0)
     editor = _children(shell.pid)[0]
     assert process_env(editor)[OWNER_ENV] == owner_tag()  # a copied, live owner tag
     found = reasons()

@@ -7,8 +7,8 @@ import signal
 
 import pytest
 
+from course_lib.core.waiting import wait_until
 from course_lib.processes.children import spawn
-from course_lib.ros2.node.client import wait_until
 from course_lib.ros2.node.connect import daemon_argv, daemon_socket
 from course_lib.session.session import Session
 

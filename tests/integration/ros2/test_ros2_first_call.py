@@ -19,9 +19,9 @@ from pathlib import Path
 import pytest
 from ros2_golden import GOLDEN, golden_cases
 
+from course_lib.core.waiting import wait_until
 from course_lib.processes.children import ChildProcess, spawn
 from course_lib.processes.domain import lease_domain
-from course_lib.ros2.node.client import wait_until
 from course_lib.ros2.node.connect import daemon_pids, daemon_running
 from course_lib.session.session import session_env
 

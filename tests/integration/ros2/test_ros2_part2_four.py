@@ -9,9 +9,9 @@ import pytest
 from ros2_golden import GOLDEN, console_env, reset_parameters, run_api, run_console, start_node
 from ros2_golden_part2 import CASES, SKIPPED, SUBSCRIBER, compare2, names
 
+from course_lib.core.waiting import wait_until
 from course_lib.ros2.api import nodes_and_params as api
 from course_lib.ros2.api import services_and_topics as api_more
-from course_lib.ros2.node.client import wait_until
 
 pytestmark = pytest.mark.ros
 

@@ -9,7 +9,8 @@ import time
 
 import pytest
 
-from course_lib.ros2.node.client import RosClient, wait_until
+from course_lib.core.waiting import wait_until
+from course_lib.ros2.node.client import RosClient
 from course_lib.ros2.node.discovery import FASTDDS_DEFAULT_ANNOUNCEMENT_S
 from course_lib.session.session import Session
 

@@ -15,7 +15,8 @@ from rclpy.parameter_client import AsyncParameterClient
 
 from course_lib.core.errors import ExecutableNotFoundError, PackageNotFoundError
 from course_lib.core.paths import ROSJECT_DIR
-from course_lib.processes.children import OWNER_ENV, pid_alive, reap_orphans
+from course_lib.core.procfs import pid_alive
+from course_lib.processes.children import OWNER_ENV, reap_orphans
 from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
@@ -201,3 +202,17 @@ def test_close_stops_children_and_is_idempotent() -> None:
     own.close()
     assert not node.alive
     assert own.closed
+
+
+def test_child_stopped_from_elsewhere_never_stays_a_zombie() -> None:
+    # Another notebook's lesson (or `make stop`) signals a child this process owns: its owner
+    # must reap it without being asked, or every take-over leaves a zombie behind.
+    from course_lib.processes.children import spawn
+
+    child = spawn([sys.executable, "-c", "import time; time.sleep(600)"], name="sleeper")
+    os.kill(child.pid, signal.SIGKILL)
+    deadline = time.monotonic() + 5.0
+    stat = Path(f"/proc/{child.pid}/stat")
+    while stat.exists() and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert not stat.exists(), f"pid {child.pid} is left as {stat.read_text().split()[2]}"

@@ -10,7 +10,7 @@ import rclpy
 
 from course_lib.config.simulation import load_simulation_settings
 from course_lib.core.errors import SessionThreadError
-from course_lib.ros2.node.client import wait_until
+from course_lib.core.waiting import wait_until
 from course_lib.session import session as session_module
 from course_lib.session.session import Session, get_session
 

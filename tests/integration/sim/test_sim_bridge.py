@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import math
 import threading
-import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
 
+from course_lib.core.waiting import wait_until
 from course_lib.notebook import World, start_world
 from course_lib.session.session import Session
 
@@ -44,14 +44,7 @@ SCAN_TO_BOX_M = 2.4 + 0.064  # box face at x = 2.4, lidar at x = -0.064 of base_
 
 
 def _wait_until(predicate: Callable[[], Any], timeout: float = 10.0) -> Any:
-    deadline = time.monotonic() + timeout
-    tick = threading.Event()
-    while time.monotonic() < deadline:
-        value = predicate()
-        if value:
-            return value
-        tick.wait(0.05)
-    raise TimeoutError("condition not met")
+    return wait_until(predicate, timeout, message="condition not met")
 
 
 @pytest.fixture(scope="module")

@@ -49,3 +49,9 @@ def test_replay_is_standalone(tmp_path: Path) -> None:
 def test_replay_needs_frames() -> None:
     with pytest.raises(ValueError, match="at least one frame"):
         replay_html(Simulation().model, [])
+
+
+def test_replay_title_is_escaped() -> None:
+    sim = Simulation()
+    page = replay_html(sim.model, plan_frames(sim, PLAN[:1]), title="</title><script>x</script>")
+    assert "<title>&lt;/title&gt;&lt;script&gt;x&lt;/script&gt;</title>" in page

@@ -5,13 +5,12 @@ from __future__ import annotations
 import math
 import subprocess
 import sys
-import threading
-import time
 from collections.abc import Callable, Iterator
 from typing import Any
 
 import pytest
 
+from course_lib.core.waiting import wait_until
 from course_lib.notebook import World, start_world
 from course_lib.session.session import Session, get_session
 from course_lib.sim.world.frames import joint_transform, robot_frames
@@ -57,14 +56,7 @@ TUTORIAL_PARAMETERS = {
 
 
 def _wait_until(predicate: Callable[[], Any], timeout: float = 10.0) -> Any:
-    deadline = time.monotonic() + timeout
-    tick = threading.Event()
-    while time.monotonic() < deadline:
-        value = predicate()
-        if value:
-            return value
-        tick.wait(0.05)
-    raise TimeoutError("condition not met")
+    return wait_until(predicate, timeout, message="condition not met")
 
 
 @pytest.fixture(scope="module")

@@ -10,18 +10,13 @@ import urllib.request
 
 import pytest
 
+from course_lib.core.ports import free_port
 from course_lib.notebook import start_world
 from course_lib.session.session import Session
 
 pytestmark = [pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 
 TOKEN = "course-test-token"
-
-
-def _free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return probe.getsockname()[1]
 
 
 def _wait_listening(port: int, timeout: float = 30.0) -> None:
@@ -50,7 +45,7 @@ def test_view_works_through_jupyter_server_proxy() -> None:
     session = Session()
     try:
         world = start_world(session, show=True)
-        jupyter_port = _free_port()
+        jupyter_port = free_port()
         session.spawn(
             [
                 sys.executable,

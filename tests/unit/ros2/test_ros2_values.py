@@ -49,3 +49,13 @@ def test_python_values_map_to_ros_types() -> None:
     assert ParamValue.of(["a"]).python == ["a"]
     with pytest.raises(TypeError):
         ParamValue.of([1, "a"])
+
+
+def test_parse_value_is_rclpys_guess_and_refuses_a_mapping_in_its_words() -> None:
+    from rclpy.parameter import get_parameter_value
+
+    for text in ("0.2", "[1, 2]", "[a, b]", "[1, 2.0]", "~", "1e3"):
+        msg = get_parameter_value(text)
+        assert parse_value(text).type == msg.type, text
+    with pytest.raises(AssertionError, match=r"^The 'string_value' field must be of type 'str'$"):
+        parse_value("{a: 1}")

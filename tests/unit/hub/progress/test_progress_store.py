@@ -59,3 +59,44 @@ def test_an_unwritable_place_says_which_file(tmp_path: Path) -> None:
     blocker.write_text("")
     with pytest.raises(StoreError, match=r"a-file/progress.sqlite.*--db"):
         ProgressStore(blocker / "progress.sqlite")
+
+
+class _SpyConnection:
+    """The store's connection, noting whether each write runs inside a transaction."""
+
+    def __init__(self, db: sqlite3.Connection) -> None:
+        self.db = db
+        self.in_transaction_at_write: list[bool] = []
+
+    def execute(self, sql: str, *args: object) -> sqlite3.Cursor:
+        if sql.lstrip().startswith("INSERT"):
+            self.in_transaction_at_write.append(self.db.in_transaction)
+        return self.db.execute(sql, *args)
+
+    def __enter__(self) -> _SpyConnection:
+        self.db.__enter__()
+        return self
+
+    def __exit__(self, *exc: object) -> bool | None:
+        return self.db.__exit__(*exc)  # type: ignore[arg-type]
+
+    def __getattr__(self, name: str) -> object:
+        return getattr(self.db, name)
+
+
+def test_each_write_runs_in_a_transaction_it_promises(tmp_path: Path) -> None:
+    store = ProgressStore(tmp_path / "progress.sqlite")
+    spy = _SpyConnection(store._db)
+    store._db = spy  # type: ignore[assignment]
+    store.add(Record("alice", 7, True), when=T0)
+    store.add(Record("alice", 7, False, "The robot drives"), when=T0)
+    assert spy.in_transaction_at_write == [True, True]
+    assert not spy.db.in_transaction  # committed
+
+
+def test_a_failed_write_is_rolled_back(tmp_path: Path) -> None:
+    store = ProgressStore(tmp_path / "progress.sqlite")
+    with pytest.raises(RuntimeError), store._transaction():
+        store._db.execute("INSERT INTO progress (user, lesson, passed) VALUES ('eve', 1, 1)")
+        raise RuntimeError("after the write")
+    assert store.states() == [] and not store._db.in_transaction

@@ -11,6 +11,7 @@ from collections.abc import Iterator
 
 import pytest
 
+from course_lib.core.ports import free_port
 from course_lib.lessons.progress import client as progress_report
 from course_lib.lessons.progress.client import TIMEOUT_S, report_progress
 from course_lib.lessons.report import SelfCheck, check
@@ -71,9 +72,7 @@ def test_the_record_names_the_first_failed_check(receiver) -> None:
 
 
 def test_an_unreachable_service_is_said_once(capsys: pytest.CaptureFixture[str]) -> None:
-    with socket.socket() as probe:  # a port nobody listens on
-        probe.bind(("127.0.0.1", 0))
-        url = f"http://127.0.0.1:{probe.getsockname()[1]}/services/course-progress/"
+    url = f"http://127.0.0.1:{free_port()}/services/course-progress/"  # nobody listens there
     for _ in range(2):
         report_progress(CHECK, environ=_env(url)).join(5)
     said = capsys.readouterr()

@@ -8,6 +8,7 @@ from dataclasses import replace
 import pytest
 
 from course_lib.core.paths import PACKAGE_DIR
+from course_lib.core.procfs import udp_ports
 from course_lib.ros2.command import parsers
 from course_lib.ros2.node.discovery import (
     DEFAULT_TIMING,
@@ -144,9 +145,9 @@ UDP = """  sl  local_address rem_address   st tx_queue rx_queue tr tm->when retr
 def test_participants_are_counted_by_their_metatraffic_ports() -> None:
     # 0x6A18 = 27160 = 7400 + 250 * 79 + 10: participants 0 and 1 of domain 79 (metatraffic
     # and user ports); 0x6A0E is domain 79's multicast port, 0x1CE8 domain 0's.
-    assert bound_participants(79, [UDP]) == 2
-    assert bound_participants(79, [UDP, UDP]) == 2
-    assert bound_participants(78, [UDP]) == 0
+    assert bound_participants(79, udp_ports([UDP])) == 2
+    assert bound_participants(79, udp_ports([UDP, UDP])) == 2
+    assert bound_participants(78, udp_ports([UDP])) == 0
     assert participant_prefix(list(range(16))) == tuple(range(12))
 
 

@@ -1,0 +1,160 @@
+"""The one reader of /proc: what the kernel says about a process, and the host's sockets.
+
+Standard library only, on purpose, and not psutil (pinned for tests and bench, and used by
+`machine/drivers.py` for its process trees):
+
+- `domain.py` reads the UDP table through here, and tests run it as other Unix users with
+  the system Python, where the course's packages are not importable;
+- the owner tags children carry (``COURSE_OWNER=<pid>:<start time>``) hold field 22 of
+  ``/proc/<pid>/stat`` as the kernel writes it, compared as text across processes and
+  course versions; psutil only offers it converted to a float of seconds since the epoch
+  (through the boot time and clock ticks), which would change every tag;
+- the `ros2` terminal command and `make stop` import this at every start: psutil costs about
+  15 ms of import (``python -X importtime -c "import psutil"``, measured in the course's venv)
+  for what is here a handful of small reads, while this module's own cost is pathlib's.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import os
+from collections.abc import Iterable
+from pathlib import Path
+
+__all__ = [
+    "PROC",
+    "bound_udp_ports",
+    "cmdline",
+    "environ",
+    "fd_targets",
+    "holder_start",
+    "owner_uid",
+    "parent_pid",
+    "pid_alive",
+    "pid_namespace",
+    "pids",
+    "start_time",
+    "stat_fields",
+    "udp_ports",
+    "unix_socket_paths",
+]
+
+PROC = Path("/proc")
+_UDP_TABLES = ("udp", "udp6")
+
+
+def stat_fields(pid: int) -> list[str] | None:
+    """Return the fields of /proc/<pid>/stat after the command name, or None if no such pid.
+
+    Index 0 is the state, 1 the parent pid, 2 the process group, 19 the start time.
+    """
+    try:
+        return (PROC / str(pid) / "stat").read_text().rsplit(")", 1)[1].split()
+    except (OSError, IndexError):
+        return None
+
+
+def start_time(pid: int) -> str | None:
+    """Return the start time of live process `pid` (field 22 of its stat), or None."""
+    fields = stat_fields(pid)
+    return None if fields is None or fields[0] in ("Z", "X") else fields[19]
+
+
+def holder_start(pid: int) -> str | None:
+    """Return the start time of whatever process holds `pid`, a zombie too; None if none."""
+    fields = stat_fields(pid)
+    return None if fields is None else fields[19]
+
+
+def pid_alive(pid: int) -> bool:
+    """Return True while process `pid` runs (a zombie counts as dead)."""
+    return start_time(pid) is not None
+
+
+def parent_pid(pid: int) -> int:
+    """Return the parent of process `pid`, or 0 if it is gone."""
+    fields = stat_fields(pid)
+    return int(fields[1]) if fields is not None else 0
+
+
+def cmdline(pid: int) -> tuple[str, ...] | None:
+    """Return the command line of process `pid` (empty for a kernel thread), None if gone."""
+    try:
+        raw = (PROC / str(pid) / "cmdline").read_bytes()
+    except OSError:
+        return None
+    return tuple(arg.decode(errors="replace") for arg in raw.split(b"\0") if arg)
+
+
+def environ(pid: int) -> dict[str, str]:
+    """Return the environment of process `pid` ({} if it cannot be read)."""
+    try:
+        raw = (PROC / str(pid) / "environ").read_bytes()
+    except OSError:
+        return {}
+    pairs = (item.partition(b"=") for item in raw.split(b"\0") if item)
+    return {k.decode(errors="replace"): v.decode(errors="replace") for k, _, v in pairs}
+
+
+def owner_uid(pid: int) -> int | None:
+    """Return the Unix user that owns process `pid`, or None if it is gone."""
+    try:
+        return (PROC / str(pid)).stat().st_uid
+    except OSError:
+        return None
+
+
+def pids() -> list[int]:
+    """Return the pids of every process this PID namespace shows."""
+    return [int(entry.name) for entry in PROC.iterdir() if entry.name.isdigit()]
+
+
+@functools.cache
+def pid_namespace() -> str:
+    """Return the id of this process's PID namespace (pids mean nothing outside it)."""
+    try:
+        return os.readlink(PROC / "self" / "ns" / "pid").strip("pid:[]")
+    except OSError:
+        return ""
+
+
+def fd_targets(pid: int) -> list[str]:
+    """Return what the open file descriptors of `pid` point to (`socket:[123]`, paths)."""
+    targets = []
+    with contextlib.suppress(OSError):
+        for fd in (PROC / str(pid) / "fd").iterdir():
+            with contextlib.suppress(OSError):
+                targets.append(os.readlink(fd))
+    return targets
+
+
+def unix_socket_paths() -> dict[str, str]:
+    """Return the bound Unix sockets of this network namespace: `socket:[inode]` -> path."""
+    found = {}
+    with contextlib.suppress(OSError):
+        for line in (PROC / "net" / "unix").read_text().splitlines()[1:]:
+            parts = line.split(None, 7)
+            if len(parts) == 8:
+                found[f"socket:[{parts[6]}]"] = parts[7]
+    return found
+
+
+def udp_ports(tables: Iterable[str]) -> set[int]:
+    """Return the local ports listed in /proc/net/udp (or udp6) text."""
+    ports = set()
+    for table in tables:
+        for line in table.splitlines()[1:]:
+            fields = line.split()
+            if len(fields) > 1 and ":" in fields[1]:  # "0100007F:1F90": address, port in hex
+                ports.add(int(fields[1].rsplit(":", 1)[1], 16))
+    return ports
+
+
+def bound_udp_ports() -> set[int] | None:
+    """Return the local ports of every UDP socket on this host (all users); None without /proc."""
+    tables = []
+    for name in _UDP_TABLES:
+        with contextlib.suppress(OSError):
+            tables.append((PROC / "net" / name).read_text())
+    return udp_ports(tables) if tables else None

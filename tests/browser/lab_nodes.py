@@ -1,0 +1,58 @@
+"""Which node processes run in a lab, and which notebook's kernel started each (a walk's log).
+
+Read from /proc (psutil) and the lab's sessions API, never through ROS: when the graph shows a
+name twice, this says whose processes they are.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import urllib.request
+
+import psutil
+from lab_server import LabServer
+
+__all__ = ["node_processes"]
+
+NODE_EXECUTABLES = ("/param_vel", "/descriptor_vel")
+
+
+def _kernels(lab: LabServer) -> dict[str, str]:
+    """Return notebook paths by kernel id, as the lab's sessions API lists them."""
+    request = urllib.request.Request(
+        f"{lab.base_url}/api/sessions", headers={"Authorization": f"token {lab.token}"}
+    )
+    with urllib.request.urlopen(request, timeout=10) as answer:
+        sessions = json.load(answer)
+    return {s["kernel"]["id"]: s["path"].rsplit("/", 1)[-1] for s in sessions if s.get("kernel")}
+
+
+def _owner(process: psutil.Process, kernels: dict[str, str]) -> str:
+    """Return who started `process`: the notebook whose kernel is an ancestor, or the lab."""
+    for parent in process.parents():
+        found = re.search(r"kernel-([0-9a-f-]+)\.json", " ".join(parent.cmdline()))
+        if found:
+            return f"{kernels.get(found[1], 'a shut-down notebook')} (kernel pid {parent.pid})"
+    return "the lab"
+
+
+def node_processes(lab: LabServer) -> list[str]:
+    """Return one line per node process in the lab's process tree: pid, program, starter."""
+    try:
+        kernels = _kernels(lab)
+        root = psutil.Process(lab.process.pid)
+        processes = root.children(recursive=True)
+    except (psutil.Error, OSError, ValueError) as exc:
+        return [f"(could not list the lab's nodes: {exc})"]
+    lines = []
+    for process in processes:
+        try:
+            argv = process.cmdline()
+            program = next((a for a in argv if a.endswith(NODE_EXECUTABLES)), None)
+            if program is not None:
+                name = program.rsplit("/", 1)[-1]
+                lines.append(f"{name} pid {process.pid} from {_owner(process, kernels)}")
+        except psutil.Error:  # gone (or a zombie) since the listing
+            continue
+    return sorted(lines)
