@@ -41,8 +41,8 @@ check-config: setup  ## Check every file of config/, alone and together (ARGS="-
 smoke-python:  ## Prove CPython 3.12 as well: fresh venv, environment.txt, rclpy + MuJoCo smoke
 	scripts/smoke_python.sh $(SMOKE_PYTHON)
 
-lint: setup  ## ruff lint and format check
-	$(VENV)/bin/ruff check . && $(VENV)/bin/ruff format --check .
+lint: setup  ## ruff lint and format check; the layers contract (imports only point down)
+	$(VENV)/bin/ruff check . && $(VENV)/bin/ruff format --check . && $(VENV)/bin/lint-imports --no-cache
 
 format: setup
 	$(VENV)/bin/ruff format . && $(VENV)/bin/ruff check --fix .
@@ -61,7 +61,7 @@ $(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py
 	$(PY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
 	@touch $@
 
-$(STAMP_WS): $(STAMP_ENV) $(ROSJECT_SOURCES) course_lib/workspace.py course_lib/cmake/wheel_fixups.cmake
+$(STAMP_WS): $(STAMP_ENV) $(ROSJECT_SOURCES) course_lib/tools/workspace.py course_lib/cmake/wheel_fixups.cmake
 	$(PY) -m course_lib build
 
 clean:  ## Remove the environment and the built workspace

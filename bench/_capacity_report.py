@@ -1,7 +1,7 @@
 """The class bench's figures: one round's numbers, the goals, what they mean for a class.
 
 Pure except for printing and `record()` (which writes deploy/capacity.yaml); used by
-bench/class_capacity.py, and by tests/unit/deploy for the Kubernetes requests rule.
+bench/class_capacity.py, and by tests/unit/repo/deploy for the Kubernetes requests rule.
 """
 
 from __future__ import annotations
@@ -268,7 +268,7 @@ def record(facts: dict[str, object], load_before: tuple[float, ...]) -> None:
         "# memory_mib_alone: PSS of one learner's processes with no other learner (one pod);\n"
         "# memory_mib_shared: PSS per learner at that N (libraries shared across learners).\n"
         "# kubernetes: what deploy/kubernetes/values.yaml must request (requests() in\n"
-        "# bench/_capacity_report.py; tests/unit/deploy/test_kubernetes_files.py checks).\n"
+        "# bench/_capacity_report.py; tests/unit/repo/deploy/test_kubernetes_files.py checks).\n"
         + yaml.safe_dump(data, sort_keys=False)
     )
     print(f"\nwrote {RECORD.relative_to(REPO)}")

@@ -1,9 +1,9 @@
 """Shared by the benches that start real labs: a lab as `make lab` starts it, its kernels.
 
 Not a bench script itself (the leading underscore keeps `python -m bench` from running it).
-Every process started here is owned (course_lib.processes): a lab dies with the bench, and a
-kernel carries its lab's owner tag as one JupyterLab starts would, so a later session reaps it
-if the bench was killed before it could shut the kernel down.
+Every process started here is owned (course_lib.processes.children): a lab dies with the
+bench, and a kernel carries its lab's owner tag as one JupyterLab starts would, so a later
+session reaps it if the bench was killed before it could shut the kernel down.
 """
 
 from __future__ import annotations
@@ -19,17 +19,11 @@ from typing import Any
 import psutil
 from jupyter_client.manager import KernelManager
 
+from course_lib.core.paths import REPO_ROOT, runtime_dir
 from course_lib.core.procfs import pid_namespace
-from course_lib.machine.protocol import SOCKET_ENV
-from course_lib.paths import REPO_ROOT, runtime_dir
-from course_lib.processes import (
-    OWNER_ENV,
-    OWNER_NS_ENV,
-    ChildProcess,
-    owner_tag,
-    spawn,
-)
-from course_lib.testing import independent_env
+from course_lib.lab.protocol import SOCKET_ENV
+from course_lib.processes.children import OWNER_ENV, OWNER_NS_ENV, ChildProcess, owner_tag, spawn
+from course_lib.tools.testing import independent_env
 
 __all__ = ["Lab", "LabKernel", "start_lab", "tree_pids"]
 

@@ -10,8 +10,8 @@ from __future__ import annotations
 import signal
 import time
 
-from course_lib.ros2.magics import run_line
-from course_lib.session import get_session
+from course_lib.notebook.magics import run_line
+from course_lib.session.session import get_session
 
 
 def _listed() -> bool:

@@ -11,8 +11,9 @@ import subprocess
 import sys
 import time
 
-from course_lib.paths import NOTEBOOKS_DIR, REPO_ROOT
-from course_lib.testing import TEST_ENV, pytest_argv
+from course_lib.core.paths import NOTEBOOKS_DIR, REPO_ROOT
+from course_lib.tools.suite import pytest_argv
+from course_lib.tools.testing import TEST_ENV
 
 
 def main() -> None:

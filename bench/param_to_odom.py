@@ -10,9 +10,9 @@ from __future__ import annotations
 import statistics
 import time
 
-from course_lib.ros2.magics import run_line
-from course_lib.session import get_session
-from course_lib.sim import start_world
+from course_lib.notebook import start_world
+from course_lib.notebook.magics import run_line
+from course_lib.session.session import get_session
 
 RUNS = 8
 SPEED = 0.2

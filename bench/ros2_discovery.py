@@ -19,9 +19,9 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
-from course_lib.domain import lease_domain  # noqa: E402
-from course_lib.processes import spawn  # noqa: E402
-from course_lib.session import session_env  # noqa: E402
+from course_lib.processes.children import spawn  # noqa: E402
+from course_lib.processes.domain import lease_domain  # noqa: E402
+from course_lib.session.session import session_env  # noqa: E402
 
 NODE = REPO / "tests" / "golden" / "ros2" / "nodes" / "param_vel_node.py"
 ROS2 = str(Path(sys.executable).parent / "ros2")

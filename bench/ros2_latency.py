@@ -18,10 +18,10 @@ REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
 from course_lib.core.waiting import wait_until  # noqa: E402
+from course_lib.notebook.magics import run_line  # noqa: E402
 from course_lib.ros2 import client, start_daemon  # noqa: E402
-from course_lib.ros2.connect import daemon_socket  # noqa: E402
-from course_lib.ros2.magics import run_line  # noqa: E402
-from course_lib.session import get_session  # noqa: E402
+from course_lib.ros2.node.connect import daemon_socket  # noqa: E402
+from course_lib.session.session import get_session  # noqa: E402
 
 NODE = REPO / "tests" / "golden" / "ros2" / "nodes" / "param_vel_node.py"
 
@@ -87,7 +87,7 @@ def _part2(env: dict[str, str], runs: int) -> None:
         "terminal python -c pass (floor)",
         _timed(lambda: subprocess.run(python, env=env, check=True), runs),
     )
-    from course_lib.ros2.commands import run_collected
+    from course_lib.ros2.command.commands import run_collected
 
     _report(
         "in-process ros2 interface show (no start)",

@@ -13,20 +13,20 @@ import threading
 import psutil
 from jupyter_client.manager import KernelManager
 
-from course_lib.paths import REPO_ROOT
-from course_lib.testing import TEST_ENV
+from course_lib.core.paths import REPO_ROOT
+from course_lib.tools.testing import TEST_ENV
 
 LESSON = """
-%load_ext course_lib.ros2.magics
-from course_lib.session import get_session
-from course_lib.sim import start_world
+%load_ext course_lib.notebook.magics
+from course_lib.session.session import get_session
+from course_lib.notebook import start_world
 session = get_session()
 node = session.run("parameter_tests", "param_vel")
 world = start_world(session, show=True)
 import time
 deadline = time.monotonic() + 15
 while time.monotonic() < deadline and "/param_vel_node" not in __import__(
-        "course_lib.ros2.magics", fromlist=["run_line"]).run_line("node list").output.stdout:
+        "course_lib.notebook.magics", fromlist=["run_line"]).run_line("node list").output.stdout:
     time.sleep(0.05)
 %ros2 param set /param_vel_node velocity 0.2
 world.wait_for_odom(lambda r: r.linear_mps > 0.15, 10)

@@ -9,14 +9,14 @@ import subprocess
 import sys
 import time
 
-from course_lib.paths import REPO_ROOT
+from course_lib.core.paths import REPO_ROOT
 
 RUNS = 7
 
 FIRST_LIST = """
 import time
 t0 = time.monotonic()
-from course_lib.session import Session
+from course_lib.session.session import Session
 from rclpy.parameter_client import AsyncParameterClient
 s = Session()
 s.run("parameter_tests", "param_vel")
@@ -31,7 +31,7 @@ s.close()
 
 LATE_NODE = """
 import time
-from course_lib.session import Session
+from course_lib.session.session import Session
 from rclpy.parameter_client import AsyncParameterClient
 s = Session()
 time.sleep(1.0)  # a session that has been running for a while

@@ -8,8 +8,8 @@ import threading
 import time
 from typing import Any
 
-from course_lib.session import Session
-from course_lib.sim import World, start_world
+from course_lib.notebook import World, start_world
+from course_lib.session.session import Session
 
 RUNS = 10
 CHANGED_MPS = 0.02  # the first /odom reading clearly off its previous speed

@@ -7,8 +7,8 @@ import os
 import sys
 import time
 
-from course_lib.session import Session
-from course_lib.sim import start_world
+from course_lib.notebook import start_world
+from course_lib.session.session import Session
 
 WINDOW_S = 10.0
 TICKS = os.sysconf("SC_CLK_TCK")

@@ -7,8 +7,8 @@ import statistics
 import sys
 import time
 
-from course_lib.session import Session
-from course_lib.sim.physics import Simulation
+from course_lib.session.session import Session
+from course_lib.sim.world.physics import Simulation
 
 SIM_SECONDS = 20.0
 

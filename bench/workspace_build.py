@@ -11,7 +11,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from course_lib.paths import REPO_ROOT, ROSJECT_DIR
+from course_lib.core.paths import REPO_ROOT, ROSJECT_DIR
 
 GOAL_S = 30.0
 

@@ -10,9 +10,9 @@ from importlib import import_module
 from typing import Any
 
 _EXPORTS = {
-    "CourseError": ".errors",
-    "Session": ".session",
-    "get_session": ".session",
+    "CourseError": ".core.errors",
+    "Session": ".session.session",
+    "get_session": ".session.session",
     "launch": ".launch",
     "dry_run": ".launch",
     "CommandOutput": ".ros2",
@@ -24,7 +24,7 @@ _EXPORTS = {
     "param_get": ".ros2",
     "param_list": ".ros2",
     "param_set": ".ros2",
-    "start_world": ".sim",
+    "start_world": ".notebook.world_start",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -2,6 +2,6 @@
 
 import sys
 
-from .course_cli import main
+from .tools.course_cli import main
 
 sys.exit(main())

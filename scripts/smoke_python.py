@@ -3,8 +3,8 @@
 import sys
 
 from course_lib.config.simulation import load_simulation_settings
-from course_lib.session import Session
-from course_lib.sim.physics import Simulation
+from course_lib.session.session import Session
+from course_lib.sim.world.physics import Simulation
 
 
 def main() -> int:

@@ -6,7 +6,7 @@ from collections.abc import Iterator
 
 import pytest
 
-from course_lib.session import Session
+from course_lib.session.session import Session
 
 
 @pytest.fixture(scope="module")

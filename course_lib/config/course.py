@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..paths import config_dir
+from ..core.paths import config_dir
 from .loader import SettingValueError, load_settings, setting
 
 __all__ = ["CourseSettings", "TravelExercise", "course_yaml", "load_course_settings"]

@@ -16,8 +16,8 @@ from typing import Any, Literal, TypeVar, Union
 
 import yaml
 
-from ..errors import ConfigError
-from ..paths import REPO_ROOT
+from ..core.errors import ConfigError
+from ..core.paths import REPO_ROOT
 from .yaml_syntax import syntax_problem
 
 __all__ = [

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
 
-from ..paths import config_dir
+from ..core.paths import config_dir
 from .loader import SettingValueError, load_settings, setting
 
 __all__ = [

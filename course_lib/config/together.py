@@ -14,7 +14,7 @@ from pathlib import Path
 
 import yaml
 
-from ..errors import ConfigError
+from ..core.errors import ConfigError
 from .course import CourseSettings, course_yaml, load_course_settings
 from .loader import display_path
 from .simulation import Obstacle, SimulationSettings, load_simulation_settings, simulation_yaml

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import yaml
 
-from ..errors import ConfigError, CourseError
+from ..core.errors import ConfigError, CourseError
 from .settings import HUB_YAML, HubSettings
 
 __all__ = ["FIRST_LEARNER_UID", "Account", "ensure_accounts", "refuse_system_accounts"]

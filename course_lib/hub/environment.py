@@ -12,8 +12,8 @@ import subprocess
 from collections.abc import Callable
 from pathlib import Path
 
-from ..errors import CourseError
-from ..paths import REPO_ROOT
+from ..core.errors import CourseError
+from ..core.paths import REPO_ROOT
 
 __all__ = ["build_environment", "check_world_executable", "course_copy", "source_files"]
 

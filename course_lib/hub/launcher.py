@@ -16,9 +16,9 @@ from pathlib import Path
 
 import yaml
 
+from ..core.errors import ConfigError, CourseError
 from ..core.ports import free_port
-from ..errors import ConfigError, CourseError
-from ..signalling import send
+from ..core.signalling import send
 from .accounts import ensure_accounts, refuse_system_accounts
 from .environment import build_environment, check_world_executable
 from .plan import PLAN_ENV, HubPlan, write_plan

@@ -6,7 +6,7 @@ import shutil
 import subprocess
 from pathlib import Path
 
-from ..errors import CourseError
+from ..core.errors import CourseError
 
 __all__ = ["PINS_DIR", "install_proxy", "missing_npm", "proxy_command"]
 

@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import Literal
 
 from ..config.loader import SettingValueError, load_settings, setting
-from ..paths import config_dir
+from ..core.paths import config_dir
 
 __all__ = ["HUB_YAML", "USER_NAME", "HubSettings", "load_hub_settings"]
 

@@ -12,8 +12,8 @@ import shutil
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from ..lab import course_server_options, run_lab
-from ..paths import LEARNER_ROOT_ENV, NOTEBOOKS_DIR, ROSJECT_DIR, venv_bin_dir
+from ..core.paths import LEARNER_ROOT_ENV, NOTEBOOKS_DIR, ROSJECT_DIR, venv_bin_dir
+from ..lab.jupyterlab import course_server_options, run_lab
 
 __all__ = ["DEFAULT_URL", "LEARNER_FOLDER", "prepare_learner_copy", "run_hub_lab"]
 

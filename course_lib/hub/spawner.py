@@ -10,7 +10,7 @@ from typing import Any
 
 from jupyterhub.spawner import LocalProcessSpawner, set_user_setuid
 
-from ..signalling import send
+from ..core.signalling import send
 from .tied import tie_to_parent
 
 __all__ = ["CourseSpawner", "leftover_stop_argv", "run_bounded"]

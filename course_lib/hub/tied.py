@@ -10,7 +10,7 @@ import os
 import signal
 import sys
 
-from ..processes import set_parent_death_signal
+from ..processes.children import set_parent_death_signal
 
 __all__ = ["tie_to_parent", "tied_command"]
 

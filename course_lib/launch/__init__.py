@@ -4,19 +4,20 @@ The `launch`/`launch_ros` modules that launch files import exist only inside the
 that evaluates them (see `shim`). `launch(...)` starts a launch from a notebook (lesson 10);
 `dry_run(...)` shows each node's parameters and where they come from.
 
-Layout (modules depend downward, toward the core; a unit test checks for import cycles):
-- core: `substitution` (base, text, normalize), `event` (event and handler bases),
-  `entity` (entities, `Action`, `Condition`), `events` (the event family), `context`.
-- families: `substitutions`, `conditions`, `event_handlers`, `launch_argument`, `loading`
-  (launch files; the XML/YAML front end registers itself there), `description`,
-  `logic_substitutions`, `actions`, `event_actions`, `process`, `parameters`, `node` (launch_ros),
-  `frontend_substitutions` and `frontend` (XML/YAML).
-- running: `running` (one process), `runtime` (the event loop), `screen` (output).
-- doors: `shim` (the `launch`/`launch_ros` modules launch files import; `real_names`),
-  `resolve` (package and arguments), `cli`, `describe`, `dry_run` (`declared`), `handle`.
+Layout (folders depend downward; the import-linter contract in pyproject.toml checks it):
+- `core/`: entities, `Action`, `Condition`, events and handler bases, the context, launch
+  descriptions, `loading` (launch files; the XML/YAML front end registers itself there),
+  `real_names` (what the real modules export).
+- `api/`: `actions`, `conditions`, `process` (`ExecuteProcess`), `substitutions`,
+  `logic_substitutions`, `event_actions`, `substitution_syntax` (the `$(...)` language).
+- `ros/`: launch_ros's `Node`, its `parameters`, `declared` (what a node declares).
+- `frontend/`: XML and YAML launch files (`reader`).
+- `runtime/`: `process_runner` (one process), `service` (the event loop), `screen` (output),
+  `shim` (the `launch`/`launch_ros` modules launch files import).
+- `command/`: `resolve` (package and arguments), `cli`, `describe`, `dry_run`, `handle`.
 """
 
-from .dry_run import DryRunReport, dry_run
-from .handle import LaunchHandle, launch
+from .command.dry_run import DryRunReport, dry_run
+from .command.handle import LaunchHandle, launch
 
 __all__ = ["DryRunReport", "LaunchHandle", "dry_run", "launch"]

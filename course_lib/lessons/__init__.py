@@ -27,8 +27,8 @@ def _prepare_ipython() -> None:
     shell = get_ipython()
     if shell is None:
         return
-    shell.extension_manager.load_extension("course_lib.ros2.magics")
-    from ..errors import CourseError
+    shell.extension_manager.load_extension("course_lib.notebook.magics")
+    from ..core.errors import CourseError
     from .errors import show_course_error
 
     shell.set_custom_exc((CourseError,), show_course_error)
@@ -40,9 +40,9 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
     Re-running stops the nodes the lesson started and puts the robot back at its start pose
     when the world runs, so the lesson starts over from a clean state.
     """
-    from ..machine.takeover import set_label
-    from ..session import get_session
-    from ..widgets.events import parameter_events
+    from ..lab.takeover import set_label
+    from ..notebook.widgets.events import parameter_events
+    from ..session.session import get_session
 
     if number not in TITLES:
         raise ValueError(f"there are lessons 1 to {max(TITLES)}, not {number}")

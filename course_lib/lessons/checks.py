@@ -20,7 +20,7 @@ _GHOST_WAIT_S = 3.5  # a little past the discovery lease (course_lib/dds/fastdds
 
 
 def _nodes() -> list[str]:
-    from ..ros2 import api
+    from ..ros2.api import nodes_and_params as api
 
     return api.node_list()
 
@@ -37,7 +37,7 @@ def _own_node_running(lesson: Any, executable: str = "param_vel") -> bool:
 
 
 def _velocity(node: str = "/param_vel_node") -> float | None:
-    from ..ros2 import api
+    from ..ros2.api import nodes_and_params as api
 
     try:
         return api.param_get(node, "velocity").value
@@ -58,8 +58,8 @@ def installed_checks(found: dict[str, str]) -> list[Check]:
 
 
 def _lesson_1(lesson: Any) -> list[Check]:
-    from .. import ament
-    from ..errors import CourseError
+    from ..core import ament
+    from ..core.errors import CourseError
     from .environment import versions
 
     try:
@@ -87,8 +87,8 @@ def _namesakes(node: str) -> tuple[bool, list[str]]:
     A node that has just stopped may still be listed for a moment with no process behind it:
     wait (bounded by the discovery lease) until it leaves or a live process is seen holding it.
     """
-    from ..machine.drivers import describe, publishers
-    from ..ros2.api import client
+    from ..lab.drivers import describe, publishers
+    from ..ros2.api.nodes_and_params import client
 
     deadline = time.monotonic() + _GHOST_WAIT_S
     while True:
@@ -121,7 +121,7 @@ def _lesson_2(lesson: Any) -> list[Check]:
 
 
 def _lesson_3(lesson: Any) -> list[Check]:
-    from ..ros2 import api
+    from ..ros2.api import nodes_and_params as api
 
     alive = lesson._world is not None and lesson._world.alive
     topics = {t.name for t in api.topic_list()} if alive else set()
@@ -136,9 +136,9 @@ def _lesson_3(lesson: Any) -> list[Check]:
 
 
 def _lesson_4(lesson: Any) -> list[Check]:
-    from .. import ament
-    from ..errors import CourseError
-    from ..launch.declared import declared_parameters, node_sources
+    from ..core import ament
+    from ..core.errors import CourseError
+    from ..launch.ros.declared import declared_parameters, node_sources
 
     try:  # the installed node the learner runs, not the file they may be editing
         exe = str(ament.find_executable("parameter_tests", "param_vel", lesson.session.env))
@@ -158,7 +158,7 @@ def _lesson_4(lesson: Any) -> list[Check]:
 
 
 def _lesson_5(lesson: Any) -> list[Check]:
-    from ..ros2 import api
+    from ..ros2.api import nodes_and_params as api
 
     running = _own_node_running(lesson) and "/param_vel_node" in _nodes()
     speed = api.topic_echo_once("/cmd_vel").linear.x if running else None
@@ -184,9 +184,9 @@ def _lesson_6(lesson: Any) -> list[Check]:
 
 def other_drivers(lesson: Any, executable: str) -> list[str]:
     """Return who else publishes on /cmd_vel than this lesson's `executable` (names, pids)."""
-    from ..machine.drivers import describe
-    from ..machine.drivers import other_drivers as others_of
-    from ..ros2.api import client
+    from ..lab.drivers import describe
+    from ..lab.drivers import other_drivers as others_of
+    from ..ros2.api.nodes_and_params import client
 
     own = _own_node(lesson, executable)
     return [describe(p) for p in others_of(client(), own.pid if own and own.alive else None)]
@@ -246,7 +246,7 @@ def _written_in(lesson: Any, path: Any) -> bool:
 
 
 def _lesson_8(lesson: Any) -> list[Check]:
-    from ..ros2 import api
+    from ..ros2.api import nodes_and_params as api
 
     dump = lesson.learner_file(DUMP_NAME)
     try:
@@ -272,7 +272,7 @@ def _lesson_8(lesson: Any) -> list[Check]:
 
 
 def _lesson_9(lesson: Any) -> list[Check]:
-    from ..launch import dry_run
+    from ..launch.command.dry_run import dry_run
 
     path = lesson.learner_file("param_vel_node.yaml")
     try:
@@ -318,8 +318,8 @@ def _lesson_10(lesson: Any) -> list[Check]:
 
 
 def _lesson_11(lesson: Any) -> list[Check]:
-    from ..errors import CourseError
-    from ..ros2 import api
+    from ..core.errors import CourseError
+    from ..ros2.api import nodes_and_params as api
 
     try:  # both must be refused by the running node itself, not fail for its absence
         rejected = api.param_set("/descriptor_vel_node", "velocity", 0.3)

@@ -7,7 +7,7 @@ import math
 from typing import Any
 
 from ..config.trip import Trip, answer_trip
-from ..errors import CourseError
+from ..core.errors import CourseError
 from .checks import only_driver, other_drivers
 from .files import Text
 from .judging import TravelAttempt, Verdict, judge_travel
@@ -41,7 +41,7 @@ class TravelExercise:
 
     def arm(self) -> Text:
         """Stop the robot, put it back at its start pose and remember where it stands."""
-        from ..ros2 import api
+        from ..ros2.api import nodes_and_params as api
 
         world = self.lesson.current_world
         for name in ("velocity", "travel_time"):

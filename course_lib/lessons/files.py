@@ -1,13 +1,13 @@
-"""Files the lessons show and write: sources with line numbers, atomic writes, learner files."""
+"""Files the lessons show and write: sources with line numbers, diffs, learner files."""
 
 from __future__ import annotations
 
 import difflib
 import os
-import tempfile
 from pathlib import Path
 
-from ..paths import REPO_ROOT, learner_notebooks_dir
+from ..core.atomic_files import atomic_write
+from ..core.paths import REPO_ROOT, learner_notebooks_dir
 
 __all__ = [
     "LEARNER_DIR",
@@ -33,24 +33,6 @@ def display_path(path: str | os.PathLike[str]) -> str:
             continue
         return str(rel) if base == notebooks else f"../{rel}"
     return str(path)
-
-
-def atomic_write(path: str | os.PathLike[str], text: str) -> Path:
-    """Write `text` to `path` through a temporary file and a rename: never a half-written file."""
-    target = Path(path)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(text)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, target)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return target
 
 
 def numbered(text: str, first: int = 1, marks: set[int] | None = None) -> str:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..errors import CourseError
+from ..core.errors import CourseError
 from .files import Text
 
 __all__ = ["LaunchRun", "start_launch"]
@@ -31,16 +31,16 @@ def _executables(package: str, file: str, *args: str) -> list[str]:
     """Return the names of the executables the launch file starts (read, not run)."""
     from pathlib import Path
 
-    from ..launch import dry_run
+    from ..launch.command.dry_run import dry_run
 
     return sorted({Path(plan.cmd[0]).name for plan in dry_run(package, file, *args).nodes})
 
 
 def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 4) -> LaunchRun:
     """Start `ros2 launch package file args`; wait for the node's first log line."""
+    from ..lab.takeover import keep_one_driver, remember, take_over
     from ..launch import launch
-    from ..machine.takeover import keep_one_driver, remember, take_over
-    from ..ros2 import api
+    from ..ros2.api import nodes_and_params as api
 
     executables = _executables(package, file, *args)
     for executable in executables:

@@ -14,9 +14,9 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ..errors import CourseError
-from ..paths import REPO_ROOT
-from ..processes import ChildProcess
+from ..core.errors import CourseError
+from ..core.paths import REPO_ROOT
+from ..processes.children import ChildProcess
 from . import files
 from .report import SelfCheck
 from .settings import CourseSettings
@@ -76,7 +76,7 @@ class Lesson:
     # --- the world -------------------------------------------------------------------------
     def world(self, *, show: bool = True, config: str | None = None) -> Any:
         """Start the simulated world (or reuse it), put the robot at its start pose, show it."""
-        from ..sim import start_world
+        from ..notebook import start_world
 
         path = str(REPO_ROOT / "config" / config) if config else None
         world = start_world(self.session, show=show, config=path)  # shows the 3D view
@@ -88,8 +88,8 @@ class Lesson:
 
     def _running_lab_world(self) -> Any:
         """Return the lab's world if it runs (attached as it is, robot left where it is)."""
-        from ..machine import machine_client
-        from ..sim import start_world
+        from ..lab import machine_client
+        from ..notebook import start_world
 
         client = machine_client()
         if client is None:
@@ -141,8 +141,8 @@ class Lesson:
 
     def run(self, package: str, executable: str, *args: str, timeout: float = 10.0) -> LogLines:
         """Start a node like `ros2 run`; show its first log line, or how it failed."""
-        from ..machine.takeover import keep_one_driver, remember, take_over
-        from ..ros2.api import client
+        from ..lab.takeover import keep_one_driver, remember, take_over
+        from ..ros2.api.nodes_and_params import client
 
         command = " ".join(shlex.quote(a) for a in ("ros2", "run", package, executable, *args))
         taken = take_over(executable)
@@ -198,7 +198,7 @@ class Lesson:
 
     def package_file(self, package: str, relpath: str) -> Path:
         """Return the source path of a file of a package in rosject/ (not the installed copy)."""
-        from ..paths import ROSJECT_DIR
+        from ..core.paths import ROSJECT_DIR
 
         path = ROSJECT_DIR / package / relpath
         if not path.exists():
@@ -218,7 +218,7 @@ class Lesson:
 
     def ros2_to_file(self, command: str, path: str | os.PathLike[str]) -> files.Text:
         """Run `ros2 <command> > path` (stdout into the file, atomically); show the line."""
-        from ..ros2.api import ros2
+        from ..ros2.api.nodes_and_params import ros2
 
         result = ros2(command)
         if not result.ok:
@@ -248,7 +248,7 @@ class Lesson:
     def self_check(self) -> SelfCheck:
         """Run this lesson's self-check: what passed, and what to try for what did not."""
         from .checks import run_checks
-        from .progress_report import report_progress
+        from .progress.client import report_progress
 
         result = SelfCheck.of(self.number, run_checks(self))
         report_progress(result)  # on a hub only; never raises, never waits
@@ -280,7 +280,7 @@ class Lesson:
 
     def speed_plot(self) -> Any:
         """Show a live plot of /odom speed with every velocity change marked; return it."""
-        from ..widgets import SpeedPlot
+        from ..notebook.widgets import SpeedPlot
 
         plot = SpeedPlot(self.session)
         plot.show()
@@ -288,7 +288,7 @@ class Lesson:
 
     def dry_run(self, package: str, file: str, *args: str) -> files.Text:
         """Show what `ros2 launch ... ` would start, with each parameter's origin and traps."""
-        from ..launch import dry_run
+        from ..launch.command.dry_run import dry_run
 
         report = dry_run(package, file, *args)
         # rclpy declares these two on every node; the dry run does not know it yet (reported).
@@ -303,7 +303,7 @@ class Lesson:
 
     def events_table(self) -> Any:
         """Show /parameter_events as a live table; return it."""
-        from ..widgets import EventsTable
+        from ..notebook.widgets import EventsTable
 
         table = EventsTable(self.session)
         from IPython.display import display
@@ -313,7 +313,7 @@ class Lesson:
 
     def parameter_panel(self, node: str, save_as: str = "panel_params.yaml") -> Any:
         """Show a panel of `node`'s parameters built from its descriptors; return it."""
-        from ..widgets import ParameterPanel
+        from ..notebook.widgets import ParameterPanel
 
         panel = ParameterPanel(node, save_path=self.learner_file(save_as), session=self.session)
         from IPython.display import display

@@ -2,19 +2,18 @@
 
 Lesson 6 introduces it. Importing this package imports nothing else (a terminal command
 loads only what its verb needs) and never rclpy; the verbs that talk to ROS use the
-session's client node (course_lib.session) when they run.
+session's client node (course_lib.session.session) when they run.
 """
 
 from __future__ import annotations
 
 import importlib
-import sys
-import types
 from typing import Any
 
 _EXPORTS = {
     **dict.fromkeys(
         (
+            "client",
             "node_info",
             "node_list",
             "param_delete",
@@ -28,7 +27,7 @@ _EXPORTS = {
             "topic_echo_once",
             "topic_list",
         ),
-        "api",
+        "api.nodes_and_params",
     ),
     **dict.fromkeys(
         (
@@ -39,9 +38,11 @@ _EXPORTS = {
             "topic_info",
             "topic_publish",
         ),
-        "api_more",
+        "api.services_and_topics",
     ),
-    **dict.fromkeys(("NodeNotFoundError", "ParameterNotSetError", "TopicNotFoundError"), "errors"),
+    **dict.fromkeys(
+        ("NodeNotFoundError", "ParameterNotSetError", "TopicNotFoundError"), "api.errors"
+    ),
     "ParamFileError": "paramfile",
     **dict.fromkeys(
         ("CommandOutput", "Descriptor", "NodeInfo", "SetResult", "TopicInfo"), "results"
@@ -49,7 +50,7 @@ _EXPORTS = {
     **dict.fromkeys(("ParamValue", "parse_value"), "values"),
 }
 
-__all__ = sorted([*_EXPORTS, "client", "start_daemon"])
+__all__ = sorted([*_EXPORTS, "start_daemon"])
 
 
 def __getattr__(name: str) -> Any:
@@ -62,25 +63,7 @@ def __getattr__(name: str) -> Any:
 
 
 def start_daemon(env):  # type: ignore[no-untyped-def]
-    """Start the terminal commands' daemon for env's ROS_DOMAIN_ID (see ros2.daemon)."""
-    from .daemon import start_daemon as _start
+    """Start the terminal commands' daemon for env's ROS_DOMAIN_ID (see ros2.command.daemon)."""
+    from .command.daemon import start_daemon as _start
 
     return _start(env)
-
-
-class _Package(types.ModuleType):
-    """This package, whose `client` stays the API function once the module `client` loads."""
-
-    @property
-    def client(self) -> Any:
-        """Return api.client (the import system would put module ros2.client here)."""
-        from .api import client
-
-        return client
-
-    @client.setter
-    def client(self, _module: Any) -> None:
-        pass  # importing course_lib.ros2.client records it here; sys.modules keeps it
-
-
-sys.modules[__name__].__class__ = _Package

@@ -8,7 +8,7 @@ from typing import Any
 
 import yaml
 
-from ..bounded_yaml import YamlTooLarge, safe_load_bounded
+from ..core.bounded_yaml import YamlTooLarge, safe_load_bounded
 from .results import CommandOutput
 from .values import ParamValue, parse_value
 

@@ -1,4 +1,4 @@
-# Start-up file of a lab's bash terminal (course_lib/lab.py starts `bash --rcfile <this> -i`).
+# Start-up file of a lab's bash terminal (course_lib/lab/jupyterlab.py starts `bash --rcfile <this> -i`).
 #
 # The lab's terminal already has ROS 2 Jazzy: `ros2`, rclpy and the course's workspace come
 # with the lab's environment (ROS_DISTRO=jazzy). The ROS 2 docs start every tutorial with

@@ -1,20 +1,10 @@
-"""The simulated TurtleBot3 Waffle Pi: MuJoCo physics, ROS 2 bridge, and the notebook handle.
+"""The simulated TurtleBot3 Waffle Pi: MuJoCo physics, its ROS 2 nodes, its live 3D view.
 
-Lesson 3 starts it with `start_world()`; lesson 7 drives it with the `velocity` parameter.
+`python -m course_lib.sim` runs the whole world as one process (`world_process`); `launcher`
+starts it with its meshcat viewer. A notebook's handle on it is `course_lib.notebook.World`
+(lesson 3 starts it with `start_world()`; lesson 7 drives it with the `velocity` parameter).
 """
 
-from .kinematics import DiffDrive, Pose2D
+from .world.kinematics import DiffDrive, Pose2D
 
-__all__ = ["DiffDrive", "Pose2D", "World", "start_world"]
-
-
-def __getattr__(name: str):
-    if name == "World":
-        from .world import World
-
-        return World
-    if name == "start_world":
-        from .start import start_world
-
-        return start_world
-    raise AttributeError(name)
+__all__ = ["DiffDrive", "Pose2D"]

@@ -1,8 +1,8 @@
 """Start the simulation and its meshcat viewer as two child processes, whoever owns them.
 
-A kernel outside a lab starts them as its session's children (`sim.start`); inside a lab the
-lab's machine service starts them as its own (`machine.world_keeper`), so every notebook of
-the lab shares one robot.
+A kernel outside a lab starts them as its session's children (`notebook.world_start`); inside a
+lab the lab's machine service starts them as its own (`lab.world_keeper`), so every notebook
+of the lab shares one robot.
 """
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from ..errors import ProcessStartError
-from ..processes import ChildProcess
+from ..core.errors import ProcessStartError
+from ..processes.children import ChildProcess
 from .world_process import READY_TEXT
 
 __all__ = ["Spawner", "start_world_processes"]

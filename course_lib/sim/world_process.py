@@ -11,7 +11,7 @@ import time
 from collections.abc import Sequence
 
 from ..config.simulation import SimulationSettings, load_simulation_settings
-from ..errors import CourseError
+from ..core.errors import CourseError
 
 __all__ = ["READY_TEXT", "main", "parse_args"]
 
@@ -70,9 +70,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(err, file=sys.stderr, flush=True)
         return 2
     os.environ.setdefault("MUJOCO_GL", "egl")  # headless offscreen camera; read at import
-    from ..viz.live import LiveView
-    from .bridge import Bridge
-    from .physics import Simulation
+    from .ros.bridge import Bridge
+    from .view.live import LiveView
+    from .world.physics import Simulation
 
     sim = Simulation(settings)
     context = rclpy.Context()

@@ -1,6 +1,6 @@
 """The 3D view: meshcat scene from the MuJoCo model, live updates, recorded replays.
 
-Lesson 3 shows the live view (`course_lib.sim.start_world`); lesson 7 saves a replay.
+Lesson 3 shows the live view (`course_lib.notebook.start_world`); lesson 7 saves a replay.
 """
 
 import warnings

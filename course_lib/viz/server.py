@@ -37,7 +37,7 @@ from meshcat.servers.zmqserver import (
     ZMQWebSocketBridge,
 )
 
-from ..paths import runtime_dir
+from ..core.paths import runtime_dir
 
 __all__ = ["ORIGINS_ENV", "LocalBridge", "command_socket_url", "main", "origin_allowed"]
 
@@ -109,7 +109,7 @@ class LocalBridge(ZMQWebSocketBridge):
     """meshcat's bridge bound to one host, on ports the operating system picks.
 
     meshcat's own __init__ listens on every interface and on fixed ports, so it is not called:
-    this sets the same attributes itself (tests/integration/sim/test_viewer_server.py fails the day
+    this sets the same attributes itself (tests/integration/viz/test_viewer_server.py fails the day
     meshcat's __init__ sets one more).
     """
 

@@ -17,8 +17,8 @@ import os
 import re
 from typing import Any
 
-from ..errors import ProcessStartError
-from ..live_outputs import LIVE_MARK
+from ..core.errors import ProcessStartError
+from ..core.live_outputs import LIVE_MARK
 
 __all__ = ["Viewer", "viewer_url"]
 

@@ -18,10 +18,10 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+from course_lib.core.paths import REPO_ROOT
 from course_lib.core.ports import free_port
-from course_lib.paths import REPO_ROOT
-from course_lib.processes import ChildProcess, spawn
-from course_lib.testing import independent_env
+from course_lib.processes.children import ChildProcess, spawn
+from course_lib.tools.testing import independent_env
 
 __all__ = [
     "ClassHub",

@@ -94,8 +94,8 @@ def lab_page(browser, request: pytest.FixtureRequest) -> Iterator[object]:  # ty
     own `my_files/`), and one browser tab on it with the file browser on the lessons."""
     from lab_ui import LabPage
 
-    from course_lib.paths import LEARNER_ROOT_ENV, ROSJECT_DIR
-    from course_lib.testing import independent_env
+    from course_lib.core.paths import LEARNER_ROOT_ENV, ROSJECT_DIR
+    from course_lib.tools.testing import independent_env
 
     root = ARTIFACTS / f"lab-{request.node.name}"
     shutil.rmtree(root, ignore_errors=True)

@@ -314,6 +314,6 @@ class LabPage:
 
 
 def _repo_root() -> Any:
-    from course_lib.paths import REPO_ROOT
+    from course_lib.core.paths import REPO_ROOT
 
     return REPO_ROOT

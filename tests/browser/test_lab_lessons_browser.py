@@ -18,7 +18,7 @@ from pixels import is_blank
 from terminal import Terminal
 from view import MOVED, VIEW, change_within, shot
 
-from course_lib.paths import REPO_ROOT
+from course_lib.core.paths import REPO_ROOT
 
 pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 

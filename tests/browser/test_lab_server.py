@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 from lab_server import ARTIFACTS, LabServer
 
-from course_lib.testing import independent_env
+from course_lib.tools.testing import independent_env
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 

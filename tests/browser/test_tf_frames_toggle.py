@@ -10,8 +10,8 @@ from typing import Any
 import mujoco
 import pytest
 
-from course_lib.sim.model import build_model
-from course_lib.viz.live import LiveView
+from course_lib.sim.view.live import LiveView
+from course_lib.sim.world.model import build_model
 
 pytestmark = [
     pytest.mark.browser,

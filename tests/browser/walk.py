@@ -230,7 +230,7 @@ def _sources(name: str) -> str:
     """Return the code of lesson `name` as stored in notebooks/ (to know what cells it has)."""
     import nbformat
 
-    from course_lib.paths import NOTEBOOKS_DIR
+    from course_lib.core.paths import NOTEBOOKS_DIR
 
     notebook = nbformat.read(NOTEBOOKS_DIR / name, as_version=4)
     return "\n".join(cell.source for cell in notebook.cells if cell.cell_type == "code")

@@ -23,16 +23,16 @@ from jupyter_kernels import describe, pid_alive  # noqa: E402
 from lab_server import LabServer  # noqa: E402
 from lab_terminal import RestTerminal  # noqa: E402
 
-from course_lib.ownership import read_process  # noqa: E402
-from course_lib.paths import REPO_ROOT  # noqa: E402
-from course_lib.testing import independent_env  # noqa: E402
+from course_lib.core.paths import REPO_ROOT  # noqa: E402
+from course_lib.processes.ownership import read_process  # noqa: E402
+from course_lib.tools.testing import independent_env  # noqa: E402
 
 PY = sys.executable
 # The learner's script in the terminal: a session with the tutorial node, and a child that
 # ignores SIGINT and SIGTERM (only SIGKILL ends it).
 LEARNER_SCRIPT = """
 import sys, time
-from course_lib.session import get_session
+from course_lib.session.session import get_session
 session = get_session()
 node = session.run("parameter_tests", "param_vel")
 stubborn = session.spawn(
@@ -80,7 +80,7 @@ def main() -> None:
     facts: dict[str, object] = {}
     pids = {"lab": lab.process.pid}
     pids["jupyterlab"] = named_child(lab.process.pid, "jupyter-lab")
-    pids["daemon"] = named_child(lab.process.pid, "course_lib.ros2.daemon")
+    pids["daemon"] = named_child(lab.process.pid, "course_lib.ros2.command.daemon")
     terminal = RestTerminal(lab.base_url, lab.token)
     pids["shell"] = terminal.shell_pid
     # the learner's own programs, which inherit the lab's environment (and its owner tag)

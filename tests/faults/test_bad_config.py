@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.paths import CONFIG_DIR
+from course_lib.core.paths import CONFIG_DIR
 
 pytestmark = [pytest.mark.ros]
 
@@ -56,7 +56,7 @@ def test_broken_instructor_yaml_is_explained(start_kernel, tmp_path: Path) -> No
         path.write_text(text)
         line = _line_of(text, "[0.0" if name == "syntax" else key.rsplit(".", 1)[-1] + ":")
         out = kernel.run(
-            "from course_lib.sim import start_world\n"
+            "from course_lib.notebook import start_world\n"
             f"world = start_world(show=True, config={str(path)!r})"
         )
         assert "ConfigError" in out.error, out.everything
@@ -64,7 +64,8 @@ def test_broken_instructor_yaml_is_explained(start_kernel, tmp_path: Path) -> No
         assert "Try: " in out.error, out.everything
         assert path.read_text() == text, f"{name}: the broken file was changed"
         started = kernel.ok(
-            "from course_lib.session import get_session\nprint(len(get_session().children))"
+            "from course_lib.session.session import get_session\n"
+            "print(len(get_session().children))"
         ).text
         assert started.strip() == "0", f"{name}: processes started despite the error"
     assert _digest(CONFIG_DIR) == config_before, "config/ was changed"

@@ -13,8 +13,8 @@ SESSIONS = 4
 
 START = """
 import time
-from course_lib.session import get_session
-from course_lib.ros2.magics import run_line
+from course_lib.session.session import get_session
+from course_lib.notebook.magics import run_line
 session = get_session()
 node = session.run("parameter_tests", "param_vel", "--ros-args", "-r", "__node:=vel_{i}")
 deadline = time.monotonic() + 15
@@ -36,7 +36,7 @@ def test_four_sessions_never_see_each_other(start_kernel) -> None:
     assert len(set(domains)) == SESSIONS, f"sessions share a domain: {domains}"
     # every node is up now; each session lists nodes and parameters once more
     for i, kernel in enumerate(kernels):
-        nodes = kernel.ok("%load_ext course_lib.ros2.magics\n%ros2 node list").text
+        nodes = kernel.ok("%load_ext course_lib.notebook.magics\n%ros2 node list").text
         assert f"/vel_{i}\n" in nodes, nodes
         others = [f"/vel_{j}" for j in range(SESSIONS) if j != i and f"/vel_{j}" in nodes]
         assert not others, f"session {i} (domain {domains[i]}) sees {others}"

@@ -12,9 +12,9 @@ from jupyter_kernels import describe, process_tree, wait_gone
 pytestmark = [pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 
 LESSON = """
-%load_ext course_lib.ros2.magics
-from course_lib.session import get_session
-from course_lib.sim import start_world
+%load_ext course_lib.notebook.magics
+from course_lib.session.session import get_session
+from course_lib.notebook import start_world
 session = get_session()
 node = session.run("parameter_tests", "param_vel")
 world = start_world(session, show=True)

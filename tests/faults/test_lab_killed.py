@@ -19,8 +19,8 @@ import pytest
 from jupyter_kernels import describe, wait_gone
 from lab_terminal import RestTerminal, rest
 
-from course_lib.paths import REPO_ROOT
-from course_lib.testing import independent_env
+from course_lib.core.paths import REPO_ROOT
+from course_lib.tools.testing import independent_env
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "browser"))
 from lab_server import LabServer
@@ -51,7 +51,7 @@ def test_killed_lab_leaves_nothing_and_next_lab_says_so(private_tmp) -> None:
         assert STALE_TAB in rest(lab.base_url, lab.token, "GET", WORKSPACE)["data"]
         tree = [p.pid for p in psutil.Process(lab.process.pid).children(recursive=True)]
         running = describe(tree)
-        for part in ("jupyter-lab", "course_lib.ros2.daemon", "ipykernel"):
+        for part in ("jupyter-lab", "course_lib.ros2.command.daemon", "ipykernel"):
             assert part in running, f"{part} is not running:\n{running}"
         assert terminal.shell_pid in tree
         killed_at = time.monotonic()

@@ -96,8 +96,8 @@ def test_the_lab_stores_no_live_output(lab: LabServer) -> None:
 
     import nbformat
 
-    from course_lib.live_outputs import PLACEHOLDERS
-    from course_lib.paths import REPO_ROOT
+    from course_lib.core.live_outputs import PLACEHOLDERS
+    from course_lib.core.paths import REPO_ROOT
 
     notebook = nbformat.v4.new_notebook()
     cell = nbformat.v4.new_code_cell("plot = lesson.speed_plot()")

@@ -45,7 +45,7 @@ def test_every_world_call_in_a_lab_is_the_labs_one_world(lab_kernel) -> None:
     assert "your lab's robot" in shown.text, shown.everything
     assert _sim_pid(six) == _sim_pid(three), "lesson 6 started a second world"
     # another real-time factor changes the lab's world in place, in one line
-    other.ok("from course_lib.sim import start_world")
+    other.ok("from course_lib.notebook import start_world")
     faster = other.ok("world = start_world(show=False, real_time_factor=2.0)")
     assert _sim_pid(other) == _sim_pid(three), "a real-time factor started a second world"
     said = faster.text.strip().splitlines()

@@ -14,7 +14,7 @@ pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 LISTED = """
 import time
-from course_lib.ros2.magics import run_line
+from course_lib.notebook.magics import run_line
 def listed(present, timeout=10.0):
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
@@ -30,8 +30,8 @@ def test_killed_node_loses_its_parameters_until_restarted(start_kernel, tmp_path
     params.write_text("/param_vel_node:\n  ros__parameters:\n    velocity: 0.3\n")
     kernel = start_kernel()
     kernel.ok(
-        "%load_ext course_lib.ros2.magics\n"
-        "from course_lib.session import get_session\n"
+        "%load_ext course_lib.notebook.magics\n"
+        "from course_lib.session.session import get_session\n"
         f"node = get_session().run('parameter_tests', 'param_vel', '--ros-args', "
         f"'--params-file', {str(params)!r})\n"
         "print('pid', node.pid)\n" + LISTED

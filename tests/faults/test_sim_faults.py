@@ -19,9 +19,9 @@ pytestmark = [pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 MESHCAT_PORT = 7000  # meshcat-python's default web port
 
 START = """
-%load_ext course_lib.ros2.magics
-from course_lib.session import get_session
-from course_lib.sim import start_world
+%load_ext course_lib.notebook.magics
+from course_lib.session.session import get_session
+from course_lib.notebook import start_world
 world = start_world(get_session(), show=True)
 print("viewer port", world.viewer.port, "sim pid", world.process.pid)
 """

@@ -26,7 +26,7 @@ from course_lib.core.ports import free_port
 from course_lib.hub.progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
 from course_lib.hub.proxy import install_proxy
 from course_lib.hub.tied import tied_command
-from course_lib.processes import set_parent_death_signal
+from course_lib.processes.children import set_parent_death_signal
 
 LEARNERS = ("alice", "bob", "carol")
 ADMIN = "teacher"

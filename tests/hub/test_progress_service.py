@@ -15,7 +15,7 @@ from progress_hub import ADMIN, ADMIN_PASSWORD, PASSWORD, ClassHub
 
 from course_lib.hub.progress import SERVICE_NAME
 from course_lib.hub.progress.app import MAX_BODY_BYTES, MAX_READ_BYTES
-from course_lib.lessons import progress_report
+from course_lib.lessons.progress import client as progress_report
 from course_lib.lessons.report import SelfCheck, check
 
 pytestmark = pytest.mark.slow

@@ -2,7 +2,7 @@
 
 The hub runs it as a managed JupyterHub service (`python -m course_lib.hub.progress`), served
 at `/services/course-progress/`. Lessons' self-checks post their verdict to it with the
-learner's own hub token (see course_lib/lessons/progress_report.py); admins read the page.
+learner's own hub token (see course_lib/lessons/progress/client.py); admins read the page.
 
 This module is what the hub's config calls. It imports neither JupyterHub nor tornado, so a
 learner's kernel may import it for the names below.
@@ -12,6 +12,9 @@ from __future__ import annotations
 
 from pathlib import Path
 from typing import Any
+
+# the wire format's names: the lessons' side of the contract owns them
+from ...lessons.progress.record import LESSONS, PROGRESS_URL_ENV
 
 __all__ = [
     "ACCESS_SCOPE",
@@ -24,11 +27,7 @@ __all__ = [
 ]
 
 SERVICE_NAME = "course-progress"
-# The environment variable that tells a learner's server (and so its kernels) where to post:
-# the service's direct URL, http://127.0.0.1:<port>/services/course-progress/.
-PROGRESS_URL_ENV = "COURSE_PROGRESS_URL"
 DB_ENV = "COURSE_PROGRESS_DB"  # the SQLite file, when --db is not given
-LESSONS = range(1, 12)  # the lessons a record may name: 1 to 11
 ACCESS_SCOPE = f"access:services!service={SERVICE_NAME}"
 
 # JupyterHub 6's default `server` role: what a server token (JUPYTERHUB_API_TOKEN) holds.

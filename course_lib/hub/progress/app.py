@@ -16,10 +16,10 @@ from typing import Any
 from jupyterhub.services.auth import HubOAuth, HubOAuthCallbackHandler, HubOAuthenticated
 from tornado import web
 
+from ...lessons.progress.record import RecordError, parse_record
 from . import SERVICE_NAME
 from .hub_users import HubUsersError, hub_users
 from .page import render_page
-from .record import RecordError, parse_record
 from .store import ProgressStore, StoreError
 
 __all__ = ["Refusal", "ServiceContext", "make_app"]

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 
-from .record import Record
+from ...lessons.progress.record import Record
 
 __all__ = ["LessonState", "ProgressStore", "StoreError"]
 

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.session import Session
+from course_lib.session.session import Session
 
 _PREFIX_PY = Path(__file__).resolve().parents[2] / "fixtures" / "launch_pkg" / "prefix.py"
 

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
+from course_lib.core.paths import WORKSPACE_INSTALL_DIR
 from course_lib.launch import launch
-from course_lib.paths import WORKSPACE_INSTALL_DIR
-from course_lib.session import Session
+from course_lib.session.session import Session
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 

@@ -15,8 +15,8 @@ import time
 import pytest
 from rcl_interfaces.srv import GetParameters
 
-from course_lib.ros2.client import RosClient
-from course_lib.session import Session
+from course_lib.ros2.node.client import RosClient
+from course_lib.session.session import Session
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 

@@ -9,8 +9,8 @@ import yaml
 
 from course_lib.config.course import load_course_settings
 from course_lib.lessons import Lesson
-from course_lib.ros2 import api
-from course_lib.session import get_session
+from course_lib.ros2.api import nodes_and_params as api
+from course_lib.session.session import get_session
 
 pytestmark = [pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 
@@ -48,7 +48,7 @@ def test_exercise_judges_a_real_motion(lesson: Lesson) -> None:
 
 
 def test_panel_follows_the_node_and_saves_valid_yaml(lesson: Lesson, tmp_path) -> None:
-    from course_lib.widgets import ParameterPanel
+    from course_lib.notebook.widgets import ParameterPanel
 
     panel = ParameterPanel(NODE, save_path=tmp_path / "saved.yaml", session=lesson.session)
     try:

@@ -17,9 +17,15 @@ from pathlib import Path
 
 import pytest
 
+from course_lib.core.paths import (
+    CONFIG_DIR,
+    CONFIG_DIR_ENV,
+    LEARNER_ROOT_ENV,
+    NOTEBOOKS_DIR,
+    REPO_ROOT,
+)
 from course_lib.lessons.texts import TEMPLATES
-from course_lib.paths import CONFIG_DIR, CONFIG_DIR_ENV, LEARNER_ROOT_ENV, NOTEBOOKS_DIR, REPO_ROOT
-from course_lib.testing import independent_env
+from course_lib.tools.testing import independent_env
 
 pytestmark = [pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 

@@ -17,10 +17,10 @@ from pathlib import Path
 import pytest
 
 from course_lib.config.course import load_course_settings
+from course_lib.core.paths import REPO_ROOT
 from course_lib.lessons import Lesson, start
-from course_lib.paths import REPO_ROOT
-from course_lib.ros2 import api
-from course_lib.session import Session, get_session
+from course_lib.ros2.api import nodes_and_params as api
+from course_lib.session.session import Session, get_session
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 TWIST = "geometry_msgs/msg/Twist"
@@ -76,7 +76,7 @@ def test_lesson2_fails_when_the_node_was_never_started_or_still_runs(stop_nodes)
 
 def test_lesson2_passes_when_its_node_is_gone_and_another_has_the_name(stop_nodes) -> None:
     """Another lesson's or a terminal's param_vel_node is not this lesson's: named, not failed."""
-    from course_lib.paths import venv_bin_dir
+    from course_lib.core.paths import venv_bin_dir
 
     lesson = start(2)
     lesson.run("parameter_tests", "param_vel")
@@ -135,7 +135,7 @@ def test_lesson7_fails_when_the_robot_did_not_drive_or_still_drives(stop_nodes) 
 @pytest.mark.sim
 def test_lesson7_fails_for_another_publisher_on_cmd_vel_and_names_it(stop_nodes) -> None:
     """A publisher no lesson started (a terminal's `ros2 topic pub`): the motion is not judged."""
-    from course_lib.paths import venv_bin_dir
+    from course_lib.core.paths import venv_bin_dir
 
     lesson = start(7)
     lesson.world(show=False)

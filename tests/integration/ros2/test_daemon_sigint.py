@@ -8,9 +8,9 @@ import signal
 import pytest
 
 from course_lib.core.waiting import wait_until
-from course_lib.processes import spawn
-from course_lib.ros2.connect import daemon_argv, daemon_socket
-from course_lib.session import Session
+from course_lib.processes.children import spawn
+from course_lib.ros2.node.connect import daemon_argv, daemon_socket
+from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
 

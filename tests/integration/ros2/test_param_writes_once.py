@@ -13,9 +13,9 @@ from rcl_interfaces.msg import ParameterEvent
 from rclpy.qos import qos_profile_parameter_events
 
 from course_lib.core.waiting import wait_until
-from course_lib.ros2.client import RosClient
+from course_lib.ros2.node.client import RosClient
 from course_lib.ros2.values import ParamValue
-from course_lib.session import Session
+from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
 

@@ -12,10 +12,10 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.domain import lease_domain
-from course_lib.ros2 import api
-from course_lib.ros2.connect import daemon_pids, daemon_running
-from course_lib.session import session_env
+from course_lib.processes.domain import lease_domain
+from course_lib.ros2.api import nodes_and_params as api
+from course_lib.ros2.node.connect import daemon_pids, daemon_running
+from course_lib.session.session import session_env
 
 pytestmark = pytest.mark.ros
 
@@ -34,7 +34,7 @@ def env() -> Iterator[dict[str, str]]:
 
 def _popen(env: dict[str, str], command: str) -> subprocess.Popen[str]:
     return subprocess.Popen(
-        [sys.executable, "-m", "course_lib.cli", *shlex.split(command)],
+        [sys.executable, "-m", "course_lib.ros2.command.cli", *shlex.split(command)],
         env=env,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,

@@ -20,10 +20,10 @@ import pytest
 from ros2_golden import GOLDEN, golden_cases
 
 from course_lib.core.waiting import wait_until
-from course_lib.domain import lease_domain
-from course_lib.processes import ChildProcess, spawn
-from course_lib.ros2.connect import daemon_pids, daemon_running
-from course_lib.session import session_env
+from course_lib.processes.children import ChildProcess, spawn
+from course_lib.processes.domain import lease_domain
+from course_lib.ros2.node.connect import daemon_pids, daemon_running
+from course_lib.session.session import session_env
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
@@ -57,7 +57,7 @@ def domain_env() -> Iterator[dict[str, str]]:
 
 def _ros2(env: dict[str, str], command: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
-        [sys.executable, "-m", "course_lib.cli", *shlex.split(command)],
+        [sys.executable, "-m", "course_lib.ros2.command.cli", *shlex.split(command)],
         env=env,
         capture_output=True,
         text=True,
@@ -70,7 +70,7 @@ def _first_calls(env: dict[str, str], extra: str = "") -> dict[str, tuple[str, s
     """Start the four listing verbs at once; return each one's stdout, stderr, exit code."""
     procs = {
         verb: subprocess.Popen(
-            [sys.executable, "-m", "course_lib.cli", *shlex.split(verb + extra)],
+            [sys.executable, "-m", "course_lib.ros2.command.cli", *shlex.split(verb + extra)],
             env=env,
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,

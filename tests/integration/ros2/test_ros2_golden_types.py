@@ -13,7 +13,7 @@ from ros2_golden import (
     start_node,
 )
 
-from course_lib.ros2 import api
+from course_lib.ros2.api import nodes_and_params as api
 
 pytestmark = pytest.mark.ros
 

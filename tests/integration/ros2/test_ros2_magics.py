@@ -37,7 +37,7 @@ def kernel():  # type: ignore[no-untyped-def]
     km, kc = start_new_kernel(kernel_name="python3", env=env, cwd=str(REPO))
     try:
         setup = textwrap.dedent(f"""
-            %load_ext course_lib.ros2.magics
+            %load_ext course_lib.notebook.magics
             import sys
             from course_lib import get_session
             from course_lib.ros2 import client

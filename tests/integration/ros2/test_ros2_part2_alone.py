@@ -81,7 +81,7 @@ def test_hz_reports_the_rate_until_ctrl_c(interrupted) -> None:  # type: ignore[
 
 
 def test_service_call_writes_once(door) -> None:  # type: ignore[no-untyped-def]
-    from course_lib.ros2 import api
+    from course_lib.ros2.api import nodes_and_params as api
 
     case = CASES["service_call_set_parameters"]
     compare2(case, door(case["command"]))

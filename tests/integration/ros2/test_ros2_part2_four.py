@@ -10,7 +10,8 @@ from ros2_golden import GOLDEN, console_env, reset_parameters, run_api, run_cons
 from ros2_golden_part2 import CASES, SKIPPED, SUBSCRIBER, compare2, names
 
 from course_lib.core.waiting import wait_until
-from course_lib.ros2 import api, api_more
+from course_lib.ros2.api import nodes_and_params as api
+from course_lib.ros2.api import services_and_topics as api_more
 
 pytestmark = pytest.mark.ros
 

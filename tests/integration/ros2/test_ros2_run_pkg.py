@@ -10,9 +10,9 @@ from pathlib import Path
 
 import pytest
 
-from course_lib import ament
-from course_lib.domain import lease_domain
-from course_lib.errors import PackageNotFoundError
+from course_lib.core import ament
+from course_lib.core.errors import PackageNotFoundError
+from course_lib.processes.domain import lease_domain
 
 REPO = Path(__file__).resolve().parents[3]
 pytestmark = pytest.mark.ros
@@ -34,7 +34,7 @@ def _ros2(*args: str, env: dict[str, str] | None = None, **kwargs):  # type: ign
     if "LEASED" in env:
         env["ROS_DOMAIN_ID"] = env.pop("LEASED")
     return subprocess.run(
-        [sys.executable, "-m", "course_lib.cli", *args],
+        [sys.executable, "-m", "course_lib.ros2.command.cli", *args],
         env=env,
         capture_output=True,
         text=True,
@@ -77,7 +77,7 @@ def test_run_interrupted_by_ctrl_c_prints_interrupt_and_exits_254() -> None:
         [
             sys.executable,
             "-m",
-            "course_lib.cli",
+            "course_lib.ros2.command.cli",
             "run",
             "--prefix",
             f"{sys.executable} {node}",

@@ -1,6 +1,6 @@
 """A young client waits until it has met the graph; a warm one answers at once.
 
-The wait's rules are unit-tested on a fake clock (tests/unit/ros2/test_ros2_discovery.py).
+The wait's rules are unit-tested on a fake clock (tests/unit/ros2/node/test_ros2_discovery.py).
 """
 
 from __future__ import annotations
@@ -10,9 +10,9 @@ import time
 import pytest
 
 from course_lib.core.waiting import wait_until
-from course_lib.ros2.client import RosClient
-from course_lib.ros2.discovery import FASTDDS_DEFAULT_ANNOUNCEMENT_S
-from course_lib.session import Session
+from course_lib.ros2.node.client import RosClient
+from course_lib.ros2.node.discovery import FASTDDS_DEFAULT_ANNOUNCEMENT_S
+from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
 

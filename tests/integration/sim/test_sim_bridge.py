@@ -11,8 +11,8 @@ from typing import Any
 import pytest
 
 from course_lib.core.waiting import wait_until
-from course_lib.session import Session
-from course_lib.sim import World, start_world
+from course_lib.notebook import World, start_world
+from course_lib.session.session import Session
 
 pytestmark = [pytest.mark.ros, pytest.mark.sim]
 

@@ -6,8 +6,8 @@ import pytest
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 
-from course_lib.session import Session
-from course_lib.sim.nodes import NodeSpec, create_nodes
+from course_lib.session.session import Session
+from course_lib.sim.ros.nodes import NodeSpec, create_nodes
 
 pytestmark = pytest.mark.ros
 
@@ -37,7 +37,7 @@ def test_sim_nodes_have_no_clock_subscription(session: Session) -> None:
         assert node.get_parameter("use_sim_time").value is True
         assert "/clock" not in _subscribed_topics(node), (
             "rclpy changed how a node follows /clock: update _drop_own_clock_subscription "
-            "in course_lib/sim/nodes.py"
+            "in course_lib/sim/ros/nodes.py"
         )
     finally:
         node.destroy_node()

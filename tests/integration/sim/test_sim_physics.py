@@ -8,8 +8,8 @@ import mujoco
 import pytest
 
 from course_lib.config import SimulationSettings, StartPose
-from course_lib.sim.model import ROBOT_XML, SCENE_XML
-from course_lib.sim.physics import Simulation
+from course_lib.sim.world.model import ROBOT_XML, SCENE_XML
+from course_lib.sim.world.physics import Simulation
 
 pytestmark = pytest.mark.sim
 

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.sim.physics import Simulation
-from course_lib.viz.recorder import plan_frames
+from course_lib.sim.view.recorder import plan_frames
+from course_lib.sim.world.physics import Simulation
 from course_lib.viz.replay import replay_html, write_replay
 from course_lib.viz.scene import moving_bodies, scene_commands
 

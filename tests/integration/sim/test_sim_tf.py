@@ -11,10 +11,10 @@ from typing import Any
 import pytest
 
 from course_lib.core.waiting import wait_until
-from course_lib.session import Session, get_session
-from course_lib.sim import World, start_world
-from course_lib.sim.frames import joint_transform, robot_frames
-from course_lib.sim.model import build_model
+from course_lib.notebook import World, start_world
+from course_lib.session.session import Session, get_session
+from course_lib.sim.world.frames import joint_transform, robot_frames
+from course_lib.sim.world.model import build_model
 
 pytestmark = [pytest.mark.ros, pytest.mark.sim]
 
@@ -200,7 +200,7 @@ def test_wheel_frames_follow_joint_states(own_session: Session, world: World) ->
 def test_sim_nodes_list_the_tutorials_parameter_names(
     own_session: Session, world: World, node: str
 ) -> None:
-    from course_lib.ros2 import api
+    from course_lib.ros2.api import nodes_and_params as api
 
     listing = api.ros2(f"ros2 param list /{node}")
     assert listing.exit_code == 0, listing.stderr
@@ -210,7 +210,7 @@ def test_sim_nodes_list_the_tutorials_parameter_names(
 
 
 def test_qos_override_values_are_the_ones_in_use(own_session: Session, world: World) -> None:
-    from course_lib.ros2 import api
+    from course_lib.ros2.api import nodes_and_params as api
 
     assert api.param_get("/robot_state_publisher", "use_tf_static").value is True
     assert api.param_get("/turtlebot3_diff_drive", "publish_odom_tf").value is True
@@ -226,7 +226,7 @@ def test_qos_override_values_are_the_ones_in_use(own_session: Session, world: Wo
 
 
 def test_ros2_topic_echo_tf_once(own_session: Session, world: World) -> None:
-    from course_lib.ros2 import api
+    from course_lib.ros2.api import nodes_and_params as api
 
     echo = api.ros2("ros2 topic echo /tf --once")
     assert echo.exit_code == 0, echo.stderr
@@ -236,13 +236,21 @@ def test_ros2_topic_echo_tf_once(own_session: Session, world: World) -> None:
 
 def test_ros2_topic_echo_tf_once_in_a_terminal(own_session: Session, world: World) -> None:
     from course_lib.ros2 import start_daemon
-    from course_lib.ros2.connect import daemon_socket
+    from course_lib.ros2.node.connect import daemon_socket
 
     daemon = start_daemon(own_session.env)
     try:
         _wait_until(lambda: daemon_socket(own_session.domain_id).exists(), 15)
         done = subprocess.run(
-            [sys.executable, "-m", "course_lib.cli", "topic", "echo", "/tf", "--once"],
+            [
+                sys.executable,
+                "-m",
+                "course_lib.ros2.command.cli",
+                "topic",
+                "echo",
+                "/tf",
+                "--once",
+            ],
             env=own_session.env,
             capture_output=True,
             text=True,

@@ -11,8 +11,8 @@ import urllib.request
 import pytest
 
 from course_lib.core.ports import free_port
-from course_lib.session import Session
-from course_lib.sim import start_world
+from course_lib.notebook import start_world
+from course_lib.session.session import Session
 
 pytestmark = [pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
+from course_lib.core.errors import ConfigError
 from course_lib.core.procfs import pid_alive
-from course_lib.errors import ConfigError
-from course_lib.session import Session
-from course_lib.sim import start_world
+from course_lib.notebook import start_world
+from course_lib.session.session import Session
 
 pytestmark = [pytest.mark.ros, pytest.mark.sim]
 
@@ -52,8 +52,8 @@ def test_viewer_server_is_gone_after_the_session_closes() -> None:
 
 OWNER = """
 import sys
-from course_lib.session import Session
-from course_lib.sim import start_world
+from course_lib.session.session import Session
+from course_lib.notebook import start_world
 world = start_world(Session(), show=True)
 print("PIDS", world.process.pid, world.viewer.process.pid, world.viewer.port, flush=True)
 sys.stdin.read()

@@ -5,8 +5,8 @@ from __future__ import annotations
 import pytest
 
 from course_lib.config.simulation import load_simulation_settings
-from course_lib.session import Session
-from course_lib.sim.world import World
+from course_lib.notebook.world import World
+from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
 

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import psutil
 
-from course_lib.lab import terminal_shell_command
+from course_lib.lab.jupyterlab import terminal_shell_command
 
 __all__ = ["LearnerShell"]
 

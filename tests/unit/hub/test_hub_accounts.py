@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.errors import CourseError
+from course_lib.core.errors import CourseError
 from course_lib.hub.accounts import PASSWORDS_FILE, ensure_accounts
 
 pytestmark = pytest.mark.skipif(os.geteuid() != 0, reason="creates real Unix accounts")

@@ -13,9 +13,9 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.errors import CourseError
+from course_lib.core.errors import CourseError
+from course_lib.core.paths import REPO_ROOT
 from course_lib.hub.environment import check_world_executable
-from course_lib.paths import REPO_ROOT
 
 needs_root = pytest.mark.skipif(os.geteuid() != 0, reason="the hub's checks run as root")
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from course_lib.core.paths import NOTEBOOKS_DIR, ROSJECT_DIR
 from course_lib.hub.singleuser import LEARNER_FOLDER, prepare_learner_copy
-from course_lib.paths import NOTEBOOKS_DIR, ROSJECT_DIR
 
 
 def test_first_start_copies_every_lesson_and_links_the_workspace(tmp_path: Path) -> None:

@@ -12,8 +12,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from course_lib.core.paths import venv_bin_dir
 from course_lib.hub.spawner import OUTPUT_LIMIT, leftover_stop_argv, run_bounded
-from course_lib.paths import venv_bin_dir
 
 PLANTED = "import pathlib, sys; pathlib.Path(sys.argv[0]).with_name('RAN').write_text('x')\n"
 

@@ -10,12 +10,12 @@ import yaml
 
 from course_lib.config.loader import parse_settings
 from course_lib.config.trip import Trip
-from course_lib.errors import ConfigError
+from course_lib.core.errors import ConfigError
 from course_lib.lessons.files import atomic_write, diff_text, numbered
 from course_lib.lessons.judging import TravelAttempt, judge_travel
 from course_lib.lessons.report import SelfCheck, check
 from course_lib.lessons.settings import CourseSettings, course_yaml, load_course_settings
-from course_lib.widgets.yaml_file import params_yaml, set_command, write_params_file
+from course_lib.notebook.widgets.yaml_file import params_yaml, set_command, write_params_file
 
 ANSWER = Trip(5.0, 0.2)
 

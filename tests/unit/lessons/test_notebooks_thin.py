@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.paths import NOTEBOOKS_DIR
+from course_lib.core.paths import NOTEBOOKS_DIR
 
 MAX_LINES = 6
 NOTEBOOKS = sorted(NOTEBOOKS_DIR.glob("[0-9][0-9]_*.ipynb"))

@@ -1,0 +1,103 @@
+"""One node of each name in a lab: a lesson stops what another lesson left running first.
+
+`%ros2 run`, `lesson.run()` and `lesson.launch()` call `take_over()` before they start a node
+and `remember()` after; in a lab the lab's register is asked (every kernel shares it), outside
+a lab this kernel's own. A node the learner starts in a terminal is not the lessons' business:
+duplicates made on purpose behave as on a real ROS 2 machine.
+"""
+
+from __future__ import annotations
+
+import threading
+
+from ..processes.children import ChildProcess, OutputLine, owner_tag
+from .client import machine_client
+from .register import NodeRecord, NodeRegister, node_name_from_log
+
+__all__ = ["keep_one_driver", "lessons_nodes", "remember", "set_label", "take_over"]
+
+_local = NodeRegister()
+_state = {"label": "this notebook"}
+_lock = threading.Lock()
+
+
+def set_label(label: str) -> None:
+    """Name who starts nodes from this kernel from now on (`lesson 7`)."""
+    with _lock:
+        _state["label"] = label
+
+
+def _label() -> str:
+    with _lock:
+        return _state["label"]
+
+
+def take_over(executable: str) -> str:
+    """Stop a lessons' node of `executable` still running; return the line saying so, or ''."""
+    client = machine_client()
+    if client is not None:
+        found = client.request("node.take", executable=executable).get("stopped")
+        record = NodeRecord(**found) if found else None
+    else:
+        record = _local.take(executable)
+    if record is None:
+        return ""
+    node = record.node or executable
+    return (
+        f"Stopped {node} ({executable}) that {record.label} had started: "
+        "one node of each name runs in your lab."
+    )
+
+
+def remember(child: ChildProcess, executable: str) -> None:
+    """Register `child` as the lessons' running `executable` (its node name from its log)."""
+    label = _label()
+    node = next((n for n in map(node_name_from_log, (ln.text for ln in child.lines)) if n), "")
+    _register(child, executable, node, label)
+    if node:
+        return
+
+    def learn_name(line: OutputLine) -> None:  # a slow node logs its name later
+        name = node_name_from_log(line.text)
+        if name:
+            child.remove_listener(learn_name)
+            _register(child, executable, name, label)
+
+    child.add_listener(learn_name)
+
+
+def _register(child: ChildProcess, executable: str, node: str, label: str) -> None:
+    if not child.alive:
+        return
+    record = NodeRecord(executable, node, owner_tag(child.pid), label)
+    client = machine_client()
+    if client is not None:
+        client.request("node.register", **record.as_dict())
+    else:
+        _local.register(record)
+
+
+def lessons_nodes() -> list[NodeRecord]:
+    """Return the nodes lessons started that still run (the lab's, or this kernel's)."""
+    client = machine_client()
+    if client is None:
+        return _local.records()
+    return [NodeRecord(**found) for found in client.request("node.list").get("nodes", [])]
+
+
+def _stop(record: NodeRecord) -> None:
+    client = machine_client()
+    if client is not None:
+        client.request("node.stop", tag=record.tag)
+    else:
+        _local.stop(record.tag)
+
+
+def keep_one_driver(child: ChildProcess) -> str:
+    """If `child` drives the robot, stop the lessons' other drivers; return what to say."""
+    from ..ros2.api.nodes_and_params import client
+    from .drivers import one_driver
+
+    if not child.alive:
+        return ""
+    return "\n".join(one_driver(client(), child.pid, lessons_nodes(), _stop))

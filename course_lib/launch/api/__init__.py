@@ -1,0 +1,1 @@
+"""The launch API that launch files call: actions, conditions, substitutions."""

@@ -1,0 +1,1 @@
+"""`ros2 launch` and its doors: the console command, dry runs, notebook launches."""

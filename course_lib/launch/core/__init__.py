@@ -1,0 +1,1 @@
+"""The small core of launch: entities, events, the context, descriptions, loading files."""

@@ -1,0 +1,1 @@
+"""XML and YAML launch files, read into the actions Python launch files build."""

@@ -1,0 +1,1 @@
+"""launch_ros: `Node` and its parameters."""

@@ -1,0 +1,1 @@
+"""Run a launch description: the event loop, its processes, its output."""

@@ -1,0 +1,90 @@
+"""What a self-check posts to the progress service, and how its JSON is checked (pure).
+
+The one place the wire format is written down: the lessons' client builds the body with
+`record_body`; the hub's progress service (course_lib.hub.progress), which implements the other
+side of this contract, reads it with `parse_record`.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from typing import Any
+
+# The environment variable that tells a learner's server (and so its kernels) where to post:
+# the service's direct URL, http://127.0.0.1:<port>/services/course-progress/. The hub sets it.
+PROGRESS_URL_ENV = "COURSE_PROGRESS_URL"
+LESSONS = range(1, 12)  # the lessons a record may name: 1 to 11
+
+__all__ = [
+    "LESSONS",
+    "MAX_FAILED_CHARS",
+    "PROGRESS_URL_ENV",
+    "Record",
+    "RecordError",
+    "parse_record",
+    "record_body",
+]
+
+MAX_FAILED_CHARS = 500  # the client cuts the failed check's text to this
+_FIELDS = {"user": str, "lesson": int, "passed": bool, "failed": str}
+
+
+class RecordError(ValueError):
+    """A posted record the service cannot take: the message says what to fix."""
+
+
+@dataclass(frozen=True)
+class Record:
+    """One self-check's verdict: whose, which lesson, passed or not, what failed first."""
+
+    user: str
+    lesson: int
+    passed: bool
+    failed: str = ""
+
+
+def record_body(record: Record) -> bytes:
+    """Return the JSON body a client posts for `record` (the failed text cut to size)."""
+    failed = record.failed[:MAX_FAILED_CHARS]
+    fields = {"user": record.user, "lesson": record.lesson, "passed": record.passed}
+    return json.dumps({**fields, "failed": failed}).encode("utf-8")
+
+
+def _field(data: dict[str, Any], name: str) -> Any:
+    kind = _FIELDS[name]
+    value = data.get(name, "" if name == "failed" else None)
+    # bool is an int in Python: a lesson of `true` is refused, as is a passed of 1
+    if not isinstance(value, kind) or (kind is int and isinstance(value, bool)):
+        raise RecordError(
+            f'"{name}" must be {kind.__name__} (JSON {_json_kind(kind)}), got {value!r}'
+        )
+    return value
+
+
+def _json_kind(kind: type) -> str:
+    return {str: "string", int: "integer", bool: "true or false"}[kind]
+
+
+def parse_record(body: bytes) -> Record:
+    """Return the record in a posted JSON body; raise RecordError saying what is wrong."""
+    try:
+        data = json.loads(body.decode("utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as error:
+        raise RecordError(f"the body is not JSON: {error}") from None
+    if not isinstance(data, dict):
+        raise RecordError('the body must be a JSON object: {"user", "lesson", "passed", "failed"}')
+    unknown = sorted(set(data) - set(_FIELDS))
+    if unknown:
+        raise RecordError(f"unknown field(s) {', '.join(unknown)}; known: {', '.join(_FIELDS)}")
+    user, lesson = _field(data, "user"), _field(data, "lesson")
+    passed, failed = _field(data, "passed"), _field(data, "failed")
+    if not user:
+        raise RecordError('"user" is empty: give the hub user name the token belongs to')
+    if lesson not in LESSONS:
+        raise RecordError(f'"lesson" must be {LESSONS[0]} to {LESSONS[-1]}, got {lesson}')
+    if passed and failed:
+        raise RecordError('a passed record has no failed check: send "failed": ""')
+    if len(failed) > MAX_FAILED_CHARS:
+        raise RecordError(f'"failed" is longer than {MAX_FAILED_CHARS} characters')
+    return Record(user, lesson, passed, failed)

@@ -1,0 +1,263 @@
+"""The notebook's handle on the simulated world (`course_lib.notebook.start_world()` returns one).
+
+Lesson 3 starts the world and looks at it; lesson 7 reads the robot's speed from it. The
+simulation and the meshcat server are children of the course session, so they end with it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import threading
+import time
+from dataclasses import dataclass
+from typing import Any
+
+from ..config.simulation import SimulationSettings
+from ..core.errors import CourseError
+from ..processes.children import ChildProcess
+from ..sim.world.kinematics import Pose2D, yaw_from_quat
+
+__all__ = ["OdomReading", "World"]
+
+_worlds: dict[int, World] = {}
+_worlds_lock = threading.RLock()
+
+
+@dataclass(frozen=True)
+class OdomReading:
+    """One /odom message: simulated time, pose, forward speed (m/s) and yaw rate (rad/s)."""
+
+    time_s: float
+    pose: Pose2D
+    linear_mps: float
+    angular_radps: float
+
+
+def _reading(msg: Any) -> OdomReading:
+    p, q, t = msg.pose.pose.position, msg.pose.pose.orientation, msg.twist.twist
+    stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+    return OdomReading(
+        stamp, Pose2D(p.x, p.y, yaw_from_quat(q.w, q.x, q.y, q.z)), t.linear.x, t.angular.z
+    )
+
+
+class World:
+    """A running simulation (and its 3D view) owned by a course session."""
+
+    def __init__(
+        self,
+        session: Any,
+        settings: SimulationSettings,
+        process: ChildProcess,
+        viewer: Any = None,
+        *,
+        shared: bool = False,
+    ) -> None:
+        from geometry_msgs.msg import Twist
+        from nav_msgs.msg import Odometry
+        from std_msgs.msg import UInt32
+
+        from ..sim.ros.bridge import RESET_DONE_TOPIC, RESET_TOPIC
+
+        self.session = session
+        self.settings = settings
+        self.process = process
+        self.viewer = viewer
+        self.shared = shared  # the lab's world, which every notebook of the lab shows
+        self._latest: OdomReading | None = None
+        self._odom_msg: Any = None
+        self._cond = threading.Condition()
+        self._listeners: list[Any] = []
+        node = session.node
+        self._sub = node.create_subscription(Odometry, "/odom", self._on_odom, 10)
+        # made on the first drive(): a kernel that only watches never counts as a driver
+        self._cmd: Any = None
+        self._reset = node.create_publisher(UInt32, RESET_TOPIC, 10)
+        self._reset_sub = node.create_subscription(
+            UInt32, RESET_DONE_TOPIC, self._on_reset_done, 10
+        )
+        self._resets_done: set[int] = set()
+        self._reset_count = 0
+        self._twist_type, self._number_type = Twist, UInt32
+
+    def __repr__(self) -> str:
+        return f"<World {'running' if self.alive else 'stopped'}>"
+
+    def _on_odom(self, msg: Any) -> None:
+        reading = _reading(msg)
+        with self._cond:
+            self._latest, self._odom_msg = reading, msg
+            self._cond.notify_all()
+        for listener in list(self._listeners):
+            listener(msg)
+
+    def _on_reset_done(self, msg: Any) -> None:
+        with self._cond:
+            self._resets_done.add(msg.data)
+            self._cond.notify_all()
+
+    @property
+    def alive(self) -> bool:
+        """Return True while the simulation process runs."""
+        return self.process.alive and not self.session.closed
+
+    def _check_alive(self) -> None:
+        if not self.alive:
+            tail = "\n".join(line.text for line in self.process.lines[-5:])
+            raise CourseError(
+                f"The simulation is not running (exit code "
+                f"{self.process.returncode}).\n{tail}".rstrip(),
+                hint="start it again with start_world().",
+            )
+
+    def wait_for_odom(self, predicate: Any = None, timeout: float = 10.0) -> OdomReading:
+        """Wait for an /odom reading (matching `predicate`, if given); raise TimeoutError."""
+        deadline = time.monotonic() + timeout
+        with self._cond:
+            while self._latest is None or (predicate is not None and not predicate(self._latest)):
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    self._check_alive()
+                    raise TimeoutError(f"no matching /odom within {timeout:g} s")
+                self._cond.wait(min(remaining, 0.2))
+            return self._latest
+
+    def odom(self) -> OdomReading:
+        """Return the latest /odom reading."""
+        self._check_alive()
+        return self.wait_for_odom()
+
+    def pose(self) -> Pose2D:
+        """Return the robot's latest pose (x m, y m, yaw rad) from /odom."""
+        return self.odom().pose
+
+    def speed(self) -> tuple[float, float]:
+        """Return (forward speed m/s, yaw rate rad/s) from the latest /odom."""
+        reading = self.odom()
+        return reading.linear_mps, reading.angular_radps
+
+    def wait_sim_time(self, seconds: float, timeout: float = 30.0) -> OdomReading:
+        """Wait until /odom reports simulated time >= `seconds`."""
+        return self.wait_for_odom(lambda r: r.time_s >= seconds - 1e-6, timeout)
+
+    def _wait_for_peer(self, count: Any, problem: str, timeout: float = 5.0) -> None:
+        """Wait until `count()` (matched subscribers or publishers) is non-zero."""
+        deadline = time.monotonic() + timeout
+        while count() == 0:
+            self._check_alive()
+            if time.monotonic() > deadline:
+                raise TimeoutError(problem)
+            with self._cond:
+                self._cond.wait(0.02)
+
+    def _matched(self, publisher: Any) -> None:
+        """Wait until the simulation subscribes to `publisher` (else the first message is lost)."""
+        problem = f"the simulation does not listen on {publisher.topic_name}"
+        self._wait_for_peer(publisher.get_subscription_count, problem)
+
+    def _matched_subscription(self, subscription: Any) -> None:
+        """Wait until the simulation publishes to `subscription`."""
+        problem = f"the simulation does not publish {subscription.topic_name}"
+        self._wait_for_peer(subscription.get_publisher_count, problem)
+
+    def drive(self, linear_mps: float = 0.0, angular_radps: float = 0.0) -> None:
+        """Publish one /cmd_vel twist (the robot keeps it until the next one)."""
+        self._check_alive()
+        msg = self._twist_type()
+        msg.linear.x, msg.angular.z = float(linear_mps), float(angular_radps)
+        if self._cmd is None:
+            self._cmd = self.session.node.create_publisher(self._twist_type, "/cmd_vel", 10)
+        self._matched(self._cmd)
+        self._cmd.publish(msg)
+
+    def reset(self, timeout: float = 5.0) -> OdomReading:
+        """Put the robot back at its start pose, at rest (simulated time keeps running)."""
+        self._check_alive()
+        self._reset_count += 1
+        number = (os.getpid() % 0x10000) << 16 | (self._reset_count % 0x10000)
+        self._matched(self._reset)
+        self._matched_subscription(self._reset_sub)
+        self._reset.publish(self._number_type(data=number))
+        deadline = time.monotonic() + timeout
+        with self._cond:
+            while number not in self._resets_done:
+                if time.monotonic() > deadline:
+                    self._check_alive()
+                    raise TimeoutError(f"the simulation did not reset within {timeout:g} s")
+                self._cond.wait(0.1)
+        start = self.settings.start_pose
+
+        def back(r: OdomReading) -> bool:
+            near = abs(r.pose.x - start.x_m) < 0.01 and abs(r.pose.y - start.y_m) < 0.01
+            return near and abs(r.linear_mps) < 0.01
+
+        return self.wait_for_odom(back, timeout)
+
+    def set_parameter(self, name: str, value: Any, timeout: float = 5.0) -> None:
+        """Set a parameter of the /mujoco node (`paused`, `real_time_factor`)."""
+        from rcl_interfaces.srv import SetParameters
+        from rclpy.parameter import Parameter
+
+        self._check_alive()
+        client = self.session.node.create_client(SetParameters, "/mujoco/set_parameters")
+        try:
+            if not client.wait_for_service(timeout_sec=timeout):
+                raise TimeoutError("/mujoco/set_parameters did not appear")
+            message = Parameter(name, value=value).to_parameter_msg()
+            request = SetParameters.Request(parameters=[message])
+            result = self.session.wait_future(client.call_async(request), timeout).results[0]
+        finally:
+            self.session.node.destroy_client(client)
+        if not result.successful:
+            raise CourseError(f"Setting parameter failed: {result.reason}")
+
+    def pause(self) -> None:
+        """Stop the physics (simulated time stops)."""
+        self.set_parameter("paused", True)
+
+    def resume(self) -> None:
+        """Run the physics again after pause()."""
+        self.set_parameter("paused", False)
+
+    def record(self, fps: int = 30) -> Any:
+        """Start recording the robot's motion; `.save("run.html")` writes an offline replay."""
+        from ..sim.view.recorder import Recorder
+        from ..sim.world.model import build_model
+
+        self._check_alive()
+        return Recorder(self.session, build_model(self.settings), fps=fps)
+
+    def show(self, height: int = 420) -> Any:
+        """Display the live 3D view in the current output cell (and return it)."""
+        if self.viewer is None:
+            raise CourseError(
+                "This world was started without a 3D view.",
+                hint="start_world(show=True) starts one.",
+            )
+        return self.viewer.show(height)
+
+    def stop(self) -> None:
+        """Stop the simulation and its 3D view (in a lab: the lab's, for every notebook)."""
+        self.process.stop()
+        if self.viewer is not None:
+            self.viewer.stop()
+        self.detach()
+
+    def detach(self) -> None:
+        """Stop listening to the world and let go of it, leaving it running; idempotent."""
+        with _worlds_lock:
+            if _worlds.get(id(self.session)) is self:
+                del _worlds[id(self.session)]
+        if not self.session.closed:
+            node = self.session.node
+            steps: list[tuple[Any, Any]] = [
+                (node.destroy_subscription, self._sub),
+                (node.destroy_publisher, self._reset),
+                (node.destroy_subscription, self._reset_sub),
+            ]
+            if self._cmd is not None:
+                steps.append((node.destroy_publisher, self._cmd))
+            for destroy, entity in steps:  # each step on its own: one failure skips no other
+                with contextlib.suppress(Exception):  # the session may be closing concurrently
+                    destroy(entity)

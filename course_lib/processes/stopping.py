@@ -1,0 +1,112 @@
+"""`make stop`: stop the course's processes like Ctrl-C, then harder, and say what stopped.
+
+Which processes count is ownership.py's rule. Each one gets SIGINT (only those whose parent is
+not itself being stopped: a lab stops its JupyterLab, a launch its nodes), then whatever still
+runs after a grace time gets SIGTERM, then SIGKILL. A process started in a process group of its
+own (every `spawn`ed child) is signalled with its group, as `ChildProcess.stop` does.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+from dataclasses import dataclass, field
+
+from ..core.signalling import send
+from ..core.waiting import wait_until
+from .ownership import CourseProcess, course_processes, current_lab, read_process
+
+__all__ = ["StopReport", "Stopped", "stop_course"]
+
+GRACE_S = 10.0  # a lab stops JupyterLab, its kernels and their nodes within this
+TERM_S = 3.0
+KILL_S = 2.0
+
+
+@dataclass(frozen=True)
+class Stopped:
+    """One course process that is gone, and the signal after which it went."""
+
+    name: str
+    pid: int
+    signal: str
+
+
+@dataclass
+class StopReport:
+    """What `make stop` stopped, what it could not stop, and the lab it left running."""
+
+    stopped: list[Stopped] = field(default_factory=list)
+    left: list[CourseProcess] = field(default_factory=list)
+    kept_lab: int | None = None
+
+    def render(self) -> str:
+        """Return the text `make stop` prints: one line per process."""
+        lines = []
+        if self.stopped:
+            lines.append(f"Stopped {len(self.stopped)} course process(es):")
+            for s in self.stopped:
+                how = "" if s.signal == "SIGINT" else f" after {s.signal}"
+                lines.append(f"  {s.name} (pid {s.pid}){how}")
+        else:
+            lines.append("No course process runs.")
+        lines += [f"Could not stop {p.name} (pid {p.pid})." for p in self.left]
+        if self.kept_lab is not None:
+            lines.append(
+                f"This terminal belongs to the lab (pid {self.kept_lab}): its JupyterLab and "
+                "terminals keep running. To stop the lab too, press Ctrl-C where `make lab` runs."
+            )
+        return "\n".join(lines)
+
+
+def _same(proc: CourseProcess) -> bool:
+    info = read_process(proc.pid)
+    return info is not None and info.start == proc.info.start
+
+
+def _signal(proc: CourseProcess, sig: signal.Signals) -> None:
+    if not _same(proc):  # gone, or its pid reused: never signal someone else
+        return
+    reason = f"`make stop`: {proc.name} is a course process ({proc.reason})"
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        send(proc.pid, sig, group=proc.info.pgid == proc.pid, reason=reason)
+
+
+def _wait_gone(pending: dict[int, CourseProcess], timeout: float) -> list[int]:
+    """Wait until every pending process is gone or `timeout` passes; return those gone."""
+
+    def gone() -> list[int]:
+        return [pid for pid, proc in pending.items() if not _same(proc)]
+
+    # polling /proc: a non-child's exit has no event to wait on
+    wait_until(lambda: len(gone()) == len(pending), timeout, interval=0.05)
+    return gone()
+
+
+def _stop_batch(found: list[CourseProcess], grace_s: float, report: StopReport) -> None:
+    pending = {proc.pid: proc for proc in found}
+    roots = [proc for proc in found if proc.info.ppid not in pending]
+    stages = ((signal.SIGINT, grace_s), (signal.SIGTERM, TERM_S), (signal.SIGKILL, KILL_S))
+    for sig, wait_s in stages:
+        for proc in roots if sig == signal.SIGINT else list(pending.values()):
+            _signal(proc, sig)
+        for pid in _wait_gone(pending, wait_s):
+            proc = pending.pop(pid)
+            report.stopped.append(Stopped(proc.name, pid, sig.name))
+        if not pending:
+            return
+    report.left += pending.values()
+
+
+def stop_course(*, grace_s: float = GRACE_S, rounds: int = 3) -> StopReport:
+    """Stop this user's course processes (not this command, its ancestors or its lab)."""
+    report = StopReport(kept_lab=current_lab())
+    seen: set[int] = set()
+    for _ in range(rounds):  # a stopped process may leave children that are leftovers now
+        found = [p for p in course_processes() if p.pid not in seen]
+        if not found:
+            break
+        seen |= {p.pid for p in found}
+        _stop_batch(found, grace_s, report)
+        grace_s = TERM_S
+    return report

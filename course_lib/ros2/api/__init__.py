@@ -1,0 +1,1 @@
+"""The `ros2` verbs as Python functions returning structured results (what lessons call)."""

@@ -1,0 +1,1 @@
+"""The one client node: rclpy context and executor, the graph, discovery, the daemon's socket."""

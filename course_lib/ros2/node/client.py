@@ -1,0 +1,339 @@
+"""Talk to the ROS graph and to nodes' parameter services through the session's client node."""
+
+from __future__ import annotations
+
+import os
+import threading
+import time
+from collections.abc import Callable, Sequence
+from typing import Any
+
+from rcl_interfaces.msg import Parameter, ParameterType
+from rcl_interfaces.msg import ParameterValue as ParameterValueMsg
+from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters, SetParameters
+from rclpy.action.graph import (
+    get_action_client_names_and_types_by_node,
+    get_action_server_names_and_types_by_node,
+)
+from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
+
+from ...core.waiting import wait_until
+from ..results import Descriptor, NodeInfo, NodeName, ParamRange, SetResult, TopicInfo
+from ..values import VALUE_FIELDS, ParamValue, value_from_msg
+from .discovery import (
+    UNKNOWN_NODE,
+    GraphView,
+    participant_prefix,
+    profile_timing,
+    read_bound_participants,
+    wait_settled,
+)
+
+__all__ = ["DISCOVERY_WAIT_S", "RosClient", "ServiceCallError"]
+
+# How long a node-targeted command looks for a node the graph does not show yet. The real
+# tools wait 1 s (`--timeout`) and so miss freshly started nodes; the course waits longer.
+DISCOVERY_WAIT_S = 2.5
+# Until this age, a node may still be unknown to a fresh client (Fast DDS re-announces every
+# 3 s by default), so node lookups wait at least until the client is this old.
+YOUNG_CLIENT_S = 4.0
+SERVICE_WAIT_S = 5.0
+CALL_TIMEOUT_S = 10.0
+# First wait for a reply before re-sending a read (a reply normally takes about 1 ms).
+FIRST_ATTEMPT_S = 0.5
+# Services whose requests change the node: sent exactly once, after a probe (see _call).
+_WRITES = {"set_parameters": SetParameters.Request}
+_POLL_S = 0.02
+_SERVICES = {
+    "list_parameters": ListParameters,
+    "get_parameters": GetParameters,
+    "set_parameters": SetParameters,
+    "describe_parameters": DescribeParameters,
+}
+
+
+class ServiceCallError(RuntimeError):
+    """A parameter service did not answer (ros2cli prints the message and exits 1)."""
+
+    @property
+    def cli_message(self) -> str:
+        return str(self)
+
+
+def value_to_msg(value: ParamValue) -> ParameterValueMsg:
+    """Convert a ParamValue into an rcl_interfaces ParameterValue."""
+    msg = ParameterValueMsg(type=value.type)
+    field = VALUE_FIELDS.get(value.type)
+    if field is not None:
+        raw = value.value
+        setattr(msg, field, list(raw) if value.type >= ParameterType.PARAMETER_BYTE_ARRAY else raw)
+    return msg
+
+
+def _descriptor(msg: Any) -> Descriptor:
+    ranges = tuple(
+        ParamRange(r.from_value, r.to_value, r.step)
+        for r in [*msg.floating_point_range, *msg.integer_range]
+    )
+    return Descriptor(
+        name=msg.name,
+        type=msg.type,
+        description=msg.description,
+        additional_constraints=msg.additional_constraints,
+        read_only=msg.read_only,
+        dynamic_typing=msg.dynamic_typing,
+        ranges=ranges,
+    )
+
+
+def _is_hidden_name(name: str) -> bool:
+    return any(part.startswith("_") for part in name.split("/"))
+
+
+def _topics(pairs: Sequence[tuple[str, Sequence[str]]], include_hidden: bool) -> tuple:
+    return tuple(
+        TopicInfo(n, tuple(t)) for n, t in pairs if include_hidden or not _is_hidden_name(n)
+    )
+
+
+class RosClient:
+    """Graph queries and parameter calls over one long-lived rclpy node (thread-safe)."""
+
+    def __init__(
+        self,
+        node: Any,
+        wait_future: Callable[[Any, float], Any],
+        *,
+        born: float | None = None,
+    ) -> None:
+        self.node = node
+        self._wait_future = wait_future
+        self._clients: dict[tuple[str, str], Any] = {}
+        # Per client: the server reply writers whose path to our reply reader a probe proved.
+        self._proven: dict[tuple[str, str], frozenset[bytes]] = {}
+        self._lock = threading.Lock()
+        self._born = time.monotonic() if born is None else born
+        # This process's participant reads the course's Fast DDS profile from its environment.
+        self._timing = profile_timing(os.environ.get("FASTRTPS_DEFAULT_PROFILES_FILE"))
+        self._domain_id = node.context.get_domain_id()
+
+    # -- graph ---------------------------------------------------------------------------
+    def settle(self, *, min_age_s: float = 0.0) -> None:
+        """Wait until this client has discovered the whole graph (at once when it is warm).
+
+        `min_age_s` is `--spin-time`: a client younger than that waits until it is that old.
+        """
+        wait_settled(self.graph_view, born=self._born, timing=self._timing, min_age_s=min_age_s)
+
+    def wait_all_seen(self, timeout: float) -> bool:
+        """Wait (at most `timeout` s) until this client has discovered every participant its
+        domain has on this host, e.g. a node just started; return whether it has."""
+        deadline = time.monotonic() + timeout
+        while True:
+            view = self.graph_view()
+            if not view.missing_participants and not view.unknown_endpoints:
+                return True
+            if time.monotonic() >= deadline:
+                return False
+            time.sleep(_POLL_S)
+
+    def graph_view(self) -> GraphView:
+        """Return the node and topic names seen, and what is known to be missing from them."""
+        node = self.node
+        topics = [name for name, _types in node.get_topic_names_and_types()]
+        endpoints = [
+            info
+            for name in topics
+            for infos in (
+                node.get_publishers_info_by_topic(name),
+                node.get_subscriptions_info_by_topic(name),
+            )
+            for info in infos
+        ]
+        unknown = sum(info.node_name == UNKNOWN_NODE for info in endpoints)
+        bound = read_bound_participants(self._domain_id)
+        missing = None
+        if bound is not None:
+            seen = {participant_prefix(info.endpoint_gid) for info in endpoints}
+            missing = max(0, bound - len(seen))
+        nodes = frozenset(n.full_name for n in self.node_names(include_hidden=True))
+        return GraphView(nodes, frozenset(topics), unknown, missing)
+
+    @property
+    def uses_sim_time(self) -> bool:
+        """Return whether this client's node runs on simulation time (`--use-sim-time`)."""
+        return bool(self.node.get_parameter("use_sim_time").value)
+
+    def node_names(self, *, include_hidden: bool = False) -> list[NodeName]:
+        """Return the nodes the graph shows (hidden ones only if asked)."""
+        return [
+            NodeName(name, ns, ns + ("" if ns.endswith("/") else "/") + name)
+            for name, ns in self.node.get_node_names_and_namespaces()
+            if include_hidden or (name and not name.startswith("_"))
+        ]
+
+    def wait_for_node(self, full_name: str, *, include_hidden: bool, timeout: float) -> bool:
+        """Wait (bounded, at least DISCOVERY_WAIT_S) until `full_name` is in the graph."""
+
+        def found() -> bool:
+            names = self.node_names(include_hidden=include_hidden)
+            return full_name in {n.full_name for n in names}
+
+        age = time.monotonic() - self._born
+        return wait_until(found, max(float(timeout), DISCOVERY_WAIT_S, YOUNG_CLIENT_S - age))
+
+    def topics(self, *, include_hidden: bool = False) -> list[TopicInfo]:
+        """Return the topics with their types, in the graph's order."""
+        return [
+            TopicInfo(name, tuple(types))
+            for name, types in self.node.get_topic_names_and_types()
+            if include_hidden or not topic_or_service_is_hidden(name)
+        ]
+
+    def node_info(self, full_name: str, *, include_hidden: bool = False) -> NodeInfo:
+        """Return the publishers, subscribers, services and actions of one node."""
+        name = full_name.rsplit("/", 1)[-1]
+        namespace = full_name.rsplit("/", 1)[0] or "/"
+        node = self.node
+        by_node = (name, namespace)
+        return NodeInfo(
+            name=full_name,
+            subscribers=_topics(
+                node.get_subscriber_names_and_types_by_node(*by_node), include_hidden
+            ),
+            publishers=_topics(
+                node.get_publisher_names_and_types_by_node(*by_node), include_hidden
+            ),
+            service_servers=_topics(
+                node.get_service_names_and_types_by_node(*by_node), include_hidden
+            ),
+            service_clients=_topics(
+                node.get_client_names_and_types_by_node(*by_node), include_hidden
+            ),
+            action_servers=_topics(
+                get_action_server_names_and_types_by_node(node, *by_node), include_hidden
+            ),
+            action_clients=_topics(
+                get_action_client_names_and_types_by_node(node, *by_node), include_hidden
+            ),
+        )
+
+    # -- parameter services --------------------------------------------------------------
+    def _client(self, node_name: str, service: str) -> Any:
+        key = (node_name, service)
+        with self._lock:
+            if key not in self._clients:
+                self._clients[key] = self.node.create_client(
+                    _SERVICES[service], f"{node_name}/{service}"
+                )
+            return self._clients[key]
+
+    def services_ready(self, node_name: str, *, timeout: float = SERVICE_WAIT_S) -> bool:
+        """Wait until the node's parameter services answer requests; False after `timeout`."""
+        clients = [self._client(node_name, s) for s in _SERVICES]
+        return wait_until(lambda: all(c.service_is_ready() for c in clients), timeout)
+
+    def _call(self, node_name: str, service: str, request: Any) -> Any:
+        client = self._client(node_name, service)
+        if not wait_until(client.service_is_ready, SERVICE_WAIT_S):
+            raise ServiceCallError(
+                f"Wait for service timed out waiting for parameter services for node {node_name}"
+            )
+        deadline = time.monotonic() + CALL_TIMEOUT_S
+        if service not in _WRITES:
+            return self._call_with_retries(client, node_name, request, deadline)
+        # Fast DDS's server waits only 100 ms for our reply reader to match before it drops a
+        # reply, and a freshly created client (or a restarted node) is "ready" as soon as we
+        # know the server, before the server knows our reader. An empty request changes
+        # nothing and may be repeated: once one is answered, the reply path exists and the
+        # write is sent exactly once (a re-sent write would apply twice). The proof holds
+        # until the server's reply writer changes (a restarted node); unknown writers: probe.
+        key, writers = (node_name, service), self._reply_writers(node_name, service)
+        if not writers or self._proven.get(key) != writers:
+            self._call_with_retries(client, node_name, _WRITES[service](), deadline)
+            self._proven[key] = writers
+        return self._call_once(client, node_name, request, deadline)
+
+    def _reply_writers(self, node_name: str, service: str) -> frozenset[bytes]:
+        """Return the GIDs of the service's reply writers, as the local graph knows them.
+
+        ROS 2 maps a service's replies to the DDS topic `rr/<service>Reply`; an RMW that
+        names it otherwise yields nothing here, and every write is then probed first.
+        """
+        topic = f"rr{node_name}/{service}Reply"
+        try:
+            infos = self.node.get_publishers_info_by_topic(topic, no_mangle=True)
+        except Exception:  # an RMW without this graph query: probe every write
+            return frozenset()
+        return frozenset(bytes(info.endpoint_gid) for info in infos)
+
+    def _timed_out(self, node_name: str) -> ServiceCallError:
+        return ServiceCallError(
+            f"Exception while calling service of node '{node_name}': "
+            f"no answer within {CALL_TIMEOUT_S:g} s"
+        )
+
+    def _call_once(self, client: Any, node_name: str, request: Any, deadline: float) -> Any:
+        future = client.call_async(request)
+        try:
+            return self._wait_future(future, max(deadline - time.monotonic(), 0.01))
+        except TimeoutError:
+            client.remove_pending_request(future)
+            raise self._timed_out(node_name) from None
+
+    def _call_with_retries(
+        self, client: Any, node_name: str, request: Any, deadline: float
+    ) -> Any:
+        """Send a request that changes nothing, re-sending with a doubling timeout."""
+        attempt_s = FIRST_ATTEMPT_S
+        while True:
+            future = client.call_async(request)
+            remaining = deadline - time.monotonic()
+            try:
+                return self._wait_future(future, min(attempt_s, max(remaining, 0.01)))
+            except TimeoutError:
+                client.remove_pending_request(future)
+                if time.monotonic() >= deadline:
+                    raise self._timed_out(node_name) from None
+                attempt_s *= 2
+
+    def list_parameters(self, node_name: str, prefixes: Sequence[str] = ()) -> list[str]:
+        """Return the names of the node's parameters (optionally under `prefixes`)."""
+        request = ListParameters.Request(prefixes=list(prefixes), depth=0)
+        return list(self._call(node_name, "list_parameters", request).result.names)
+
+    def get_parameters(self, node_name: str, names: Sequence[str]) -> list[ParamValue]:
+        """Return the values of `names` (an unknown name yields no value or NOT_SET)."""
+        response = self._call(node_name, "get_parameters", GetParameters.Request(names=names))
+        return [value_from_msg(v) for v in response.values]
+
+    def set_parameters(
+        self, node_name: str, values: Sequence[tuple[str, ParamValue]]
+    ) -> list[SetResult]:
+        """Set each parameter on its own (not atomically); return one result per parameter."""
+        params = [Parameter(name=n, value=value_to_msg(v)) for n, v in values]
+        response = self._call(
+            node_name, "set_parameters", SetParameters.Request(parameters=params)
+        )
+        return [
+            SetResult(r.successful, r.reason, name)
+            for r, (name, _v) in zip(response.results, values, strict=False)
+        ]
+
+    def describe_parameters(self, node_name: str, names: Sequence[str]) -> list[Descriptor]:
+        """Return the descriptors of `names`."""
+        request = DescribeParameters.Request(names=list(names))
+        response = self._call(node_name, "describe_parameters", request)
+        return [_descriptor(d) for d in response.descriptors]
+
+    def age(self) -> float:
+        """Return how long this client node has been discovering the graph, in seconds."""
+        return time.monotonic() - self._born
+
+    def close(self) -> None:
+        """Destroy the cached service clients."""
+        with self._lock:
+            for client in self._clients.values():
+                self.node.destroy_client(client)
+            self._clients.clear()
+            self._proven.clear()

@@ -1,0 +1,207 @@
+"""The terminal side of the `ros2` daemon: find or start it, send argv, relay its output.
+
+Nothing here imports rclpy, so a terminal command costs a Python start and one round trip.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Mapping
+from pathlib import Path
+from typing import TextIO
+
+from ...core import procfs
+from ...core.paths import runtime_dir
+from ...core.waiting import wait_until
+from ...processes.children import OWNER_ENV, owner_tag
+
+__all__ = [
+    "DaemonUnavailable",
+    "daemon_lock",
+    "daemon_pids",
+    "daemon_running",
+    "daemon_socket",
+    "request",
+    "spawn_detached",
+    "start_detached",
+    "stop_daemon",
+]
+
+START_TIMEOUT_S = 10.0
+STOP_TIMEOUT_S = 10.0
+IDLE_ENV = "COURSE_ROS2_DAEMON_IDLE_S"
+DETACHED_IDLE_S = "600"
+SHUTDOWN = "shutdown"
+
+
+class DaemonUnavailable(Exception):
+    """No daemon answers on this domain's socket (and none could be started)."""
+
+
+def daemon_socket(domain_id: int | str) -> Path:
+    """Return the socket path of the daemon serving `domain_id`."""
+    return runtime_dir() / f"ros2-daemon-{domain_id}.sock"
+
+
+def daemon_lock(domain_id: int | str) -> Path:
+    """Return the lock file a daemon of `domain_id` holds for as long as it lives."""
+    return runtime_dir() / f"ros2-daemon-{domain_id}.lock"
+
+
+def _connect(path: Path) -> socket.socket:
+    sock = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    try:
+        sock.connect(str(path))
+    except OSError:
+        sock.close()
+        raise DaemonUnavailable(str(path)) from None
+    return sock
+
+
+def daemon_argv() -> list[str]:
+    """Return the command line that starts a daemon with this interpreter."""
+    return [sys.executable, "-m", "course_lib.ros2.command.daemon"]
+
+
+def _owner_pid() -> int:
+    """Return who owns a daemon this command starts: its lab, else the terminal's shell.
+
+    The shell is the session leader (so `time ros2 ...` or a script in that terminal does
+    not own it), or the parent process when this command leads its own session.
+    """
+    from ...processes.lab_markers import owning_lab
+
+    lab = owning_lab(os.getpid())
+    if lab is not None:
+        return lab
+    leader = os.getsid(0)
+    return leader if leader not in (0, os.getpid()) and procfs.pid_alive(leader) else os.getppid()
+
+
+def spawn_detached(env: Mapping[str, str]) -> None:
+    """Start a daemon that outlives this command, owned by its lab or else by its shell.
+
+    It exits when its owner is gone (a lab's daemon dies with the lab, whichever terminal
+    or cell started it), after DETACHED_IDLE_S idle seconds, or on `ros2 daemon stop`;
+    `make stop` lists and stops it like every course process.
+    """
+    child_env = {**env, IDLE_ENV: env.get(IDLE_ENV, DETACHED_IDLE_S)}
+    child_env[OWNER_ENV] = owner_tag(_owner_pid())
+    repo_root = str(Path(__file__).resolve().parents[3])
+    child_env["PYTHONPATH"] = os.pathsep.join(
+        p for p in (repo_root, child_env.get("PYTHONPATH", "")) if p
+    )
+    subprocess.Popen(
+        daemon_argv(),
+        env=child_env,
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+        close_fds=True,
+        cwd="/",
+    )
+
+
+def _wait_connect(path: Path, timeout: float) -> socket.socket:
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            return _connect(path)
+        except DaemonUnavailable:
+            if time.monotonic() >= deadline:
+                raise
+        time.sleep(0.01)
+
+
+def connect_or_start(domain_id: str, env: Mapping[str, str]) -> socket.socket:
+    """Return a connection to this domain's daemon, starting one if none answers."""
+    path = daemon_socket(domain_id)
+    with contextlib.suppress(DaemonUnavailable):
+        return _connect(path)
+    spawn_detached(env)
+    return _wait_connect(path, START_TIMEOUT_S)
+
+
+def daemon_running(domain_id: int | str) -> bool:
+    """Return whether a daemon answers for `domain_id`."""
+    try:
+        _connect(daemon_socket(domain_id)).close()
+    except DaemonUnavailable:
+        return False
+    return True
+
+
+def start_detached(env: Mapping[str, str]) -> bool:
+    """Start env's domain's daemon and wait until it answers; False if one was running."""
+    path = daemon_socket(env["ROS_DOMAIN_ID"])
+    try:
+        _connect(path).close()
+        return False
+    except DaemonUnavailable:
+        pass
+    spawn_detached(env)
+    _wait_connect(path, START_TIMEOUT_S).close()
+    return True
+
+
+def stop_daemon(domain_id: int | str, *, timeout: float = STOP_TIMEOUT_S) -> bool:
+    """Stop the domain's daemon and wait until its process is gone; False if none ran.
+
+    Raises TimeoutError when it is still there after `timeout` seconds.
+    """
+    try:
+        sock = _connect(daemon_socket(domain_id))
+    except DaemonUnavailable:
+        return False
+    with sock, sock.makefile("r", encoding="utf-8") as reader:
+        sock.sendall(json.dumps({"control": SHUTDOWN}).encode() + b"\n")
+        reply = json.loads(reader.readline() or "{}")
+    pid = int(reply.get("pid", 0))
+    if pid:
+        wait_until(
+            lambda: not procfs.pid_alive(pid),
+            timeout,
+            interval=0.01,
+            message="Timed out waiting for daemon to shutdown",
+        )
+    return True
+
+
+def request(
+    sock: socket.socket, argv: list[str], *, cwd: str, stdout: TextIO, stderr: TextIO
+) -> int:
+    """Send one command, copy its output as it comes, and return its exit code."""
+    width = shutil.get_terminal_size().columns
+    payload = {"argv": argv, "cwd": cwd, "width": width}
+    sock.sendall(json.dumps(payload).encode() + b"\n")
+    reader = sock.makefile("r", encoding="utf-8")
+    try:
+        for line in reader:
+            frame = json.loads(line)
+            if "exit" in frame:
+                return int(frame["exit"])
+            stream = stdout if "o" in frame else stderr
+            stream.write(frame.get("o", frame.get("e", "")))
+            stream.flush()
+    finally:
+        reader.close()
+        sock.close()
+    raise DaemonUnavailable("the daemon closed the connection")
+
+
+def daemon_pids(domain_id: int | str) -> list[int]:
+    """Return the pids of this host's daemon processes serving `domain_id` (whoever owns them)."""
+    return [
+        pid
+        for pid in procfs.pids()
+        if "course_lib.ros2.command.daemon" in (procfs.cmdline(pid) or ())
+        and procfs.environ(pid).get("ROS_DOMAIN_ID") == str(domain_id)
+    ]

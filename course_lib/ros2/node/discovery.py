@@ -1,0 +1,186 @@
+"""When a client node's view of the ROS graph is complete enough to list it.
+
+A fresh DDS participant learns of the others from their announcements, so it cannot tell
+from DDS alone whether it has met everyone. On this host it can count them, though: every
+participant of a domain binds its own metatraffic port, `7410 + 250 * domain + 2 * i`
+(Fast DDS's well-known ports), which /proc/net/udp lists for any user. A young client waits
+until it has seen endpoints of as many participants as are bound, every endpoint's node is
+known by name (not `_NODE_NAME_UNKNOWN_`: that node's `ros_discovery_info` has not arrived),
+and the graph stayed the same for a moment. Without /proc it falls back on time: the
+course's Fast DDS profile makes every course process announce itself every
+`leaseAnnouncement` period, and participants answer a newcomer's announcement at once.
+Every wait is bounded by the slowest announcement period Fast DDS uses by default, so
+nodes started without the course's profile are listed too and a stuck process costs at
+most that. The counting and the rules are pure; reading /proc is one small function.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ...core import procfs
+
+__all__ = [
+    "DEFAULT_SPIN_TIME",
+    "DEFAULT_TIMING",
+    "NAME_WAIT_S",
+    "DiscoveryTiming",
+    "GraphView",
+    "requested_spin_time",
+    "timing_from_profile",
+    "wait_settled",
+]
+
+UNKNOWN_NODE = "_NODE_NAME_UNKNOWN_"
+# Fast DDS's own announcement period (used by processes started without the course profile).
+FASTDDS_DEFAULT_ANNOUNCEMENT_S = 3.0
+# Endpoint exchange and `ros_discovery_info` after two participants met (measured: under
+# 0.05 s on an idle machine, 0.1 s on two busy cores; see bench/ros2_discovery.py).
+ENDPOINT_EXCHANGE_S = 0.1
+POLL_S = 0.01
+# A node seen by its endpoints but not yet by name is running: its name (ros_discovery_info)
+# follows, late only on a loaded machine. Waiting that long costs nothing when all is known.
+NAME_WAIT_S = 10.0
+
+
+class SpinTimeDefault(float):
+    """`--spin-time`'s default (0.5 s, as ros2cli's), told apart from a typed `0.5`."""
+
+
+DEFAULT_SPIN_TIME = SpinTimeDefault(0.5)
+
+
+def requested_spin_time(args: object) -> float:
+    """Return the `--spin-time` the user typed (0 when left at its default)."""
+    value = getattr(args, "spin_time", None)
+    return 0.0 if value is None or isinstance(value, SpinTimeDefault) else float(value)
+
+
+@dataclass(frozen=True)
+class DiscoveryTiming:
+    """How long a fresh client waits for the graph (seconds)."""
+
+    floor_s: float  # a fresh client answers no earlier than this age
+    quiet_s: float  # ... and once the graph showed no change for this long
+    unknown_wait_s: float  # wait at most this long for nodes whose name is not known yet
+
+    @property
+    def warm_s(self) -> float:
+        """Return the age from which a client answers at once (its graph is complete)."""
+        return self.floor_s + self.quiet_s
+
+
+@dataclass(frozen=True)
+class GraphView:
+    """What a client sees: node and topic names, and what it knows it has not seen yet."""
+
+    nodes: frozenset[str]
+    topics: frozenset[str]
+    unknown_endpoints: int = 0  # endpoints whose node's name has not arrived
+    missing_participants: int | None = None  # bound on this host, not seen; None: unknown
+
+
+def participant_prefix(endpoint_gid: Sequence[int]) -> tuple[int, ...]:
+    """Return the participant part (GUID prefix) of a DDS endpoint's GID."""
+    return tuple(endpoint_gid[:12])
+
+
+def bound_participants(domain_id: int, ports: Iterable[int]) -> int:
+    """Count the participants of `domain_id` among the UDP ports bound on this host."""
+    base = 7400 + 250 * domain_id
+    return len({port - base for port in ports if 10 <= port - base < 250 and port % 2 == 0})
+
+
+def read_bound_participants(domain_id: int) -> int | None:
+    """Return how many participants of `domain_id` this host has (None without /proc)."""
+    ports = procfs.bound_udp_ports()
+    return None if ports is None else bound_participants(domain_id, ports)
+
+
+def _seconds(element: Any) -> float | None:
+    if element is None:
+        return None
+    sec = element.findtext("{*}sec", default="0").strip()
+    nanosec = element.findtext("{*}nanosec", default="0").strip()
+    return float(sec) + float(nanosec) / 1e9
+
+
+def timing_from_profile(xml_text: str | None) -> DiscoveryTiming:
+    """Return the waits the announcement periods of a Fast DDS profile allow."""
+    announce = FASTDDS_DEFAULT_ANNOUNCEMENT_S
+    initial = 0.1  # Fast DDS default: 5 announcements 100 ms apart
+    if xml_text:
+        import xml.etree.ElementTree as ET  # only a fresh client reads the profile
+
+        root = ET.fromstring(xml_text)
+        config = root.find(".//{*}discovery_config")
+        if config is not None:
+            announce = _seconds(config.find("{*}leaseAnnouncement")) or announce
+            initial = _seconds(config.find("{*}initialAnnouncements/{*}period")) or initial
+    return DiscoveryTiming(
+        floor_s=round(announce + ENDPOINT_EXCHANGE_S, 3),
+        quiet_s=round(max(2 * initial, ENDPOINT_EXCHANGE_S), 3),
+        unknown_wait_s=FASTDDS_DEFAULT_ANNOUNCEMENT_S + 0.5,
+    )
+
+
+def profile_timing(path: str | Path | None) -> DiscoveryTiming:
+    """Return the timing of the profile file at `path` (Fast DDS defaults if unreadable)."""
+    try:
+        text = Path(path).read_text() if path else None
+    except OSError:
+        text = None
+    from xml.etree.ElementTree import ParseError
+
+    try:
+        return timing_from_profile(text)
+    except ParseError:
+        return timing_from_profile(None)
+
+
+DEFAULT_TIMING = timing_from_profile(None)
+
+
+def wait_settled(
+    view: Callable[[], GraphView],
+    *,
+    born: float,
+    timing: DiscoveryTiming,
+    min_age_s: float = 0.0,
+    clock: Callable[[], float] = time.monotonic,
+    sleep: Callable[[float], None] = time.sleep,
+) -> GraphView:
+    """Wait until a client node born at `born` sees the whole graph; return that view.
+
+    A warm client with no half-known node answers at once. A young one that can count the
+    host's participants waits until it has seen them all and the graph stayed the same for
+    `quiet_s`; one that cannot waits until it is `floor_s` old (and quiet). `min_age_s`
+    (`--spin-time`) is a minimum age. Nodes known by their endpoints only are waited for,
+    and participants not seen yet while the client is young: at most `unknown_wait_s`, or
+    NAME_WAIT_S for a node whose endpoints are seen but whose name has not arrived.
+    """
+    start = clock()
+    current = view()
+    counting = current.missing_participants is not None
+    floor = max(0.0 if counting else timing.floor_s, min_age_s)
+    changed = start
+    while True:
+        now = clock()
+        age = now - born
+        quiet = age >= floor + timing.quiet_s or now - changed >= timing.quiet_s
+        young = age < timing.unknown_wait_s
+        missing = bool(current.missing_participants) and young
+        if age >= floor and quiet and not current.unknown_endpoints and not missing:
+            return current
+        waited = now - start
+        named = not current.unknown_endpoints or waited >= NAME_WAIT_S
+        if age >= floor and waited >= timing.unknown_wait_s and named:
+            return current
+        sleep(POLL_S)
+        seen = view()
+        if seen != current:
+            current, changed = seen, clock()

@@ -1,0 +1,47 @@
+"""Graph look-ups shared by the service and topic verbs, over the session's client node."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ...core.waiting import wait_until
+from .client import YOUNG_CLIENT_S
+
+__all__ = ["COURSE_CLIENTS", "lookup", "own_prefix", "services"]
+
+# The client nodes of the course's kernels and daemons (course_lib.session.session): like ros2cli's
+# own nodes, they offer no services to the learner.
+COURSE_CLIENTS = "/_course_client_"
+
+
+def own_prefix(client: Any) -> str:
+    """Return `/<client node>/`: the course's own node is not part of what the learner sees."""
+    node = client.node
+    namespace = node.get_namespace().rstrip("/")
+    return f"{namespace}/{node.get_name()}/"
+
+
+def services(client: Any, *, include_hidden: bool) -> list[tuple[str, list[str]]]:
+    """Return (service, types) pairs in the graph's order, as ros2service lists them."""
+    from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
+
+    mine = own_prefix(client)
+    return [
+        (name, list(types))
+        for name, types in client.node.get_service_names_and_types()
+        if not name.startswith(mine) and (include_hidden or not topic_or_service_is_hidden(name))
+    ]
+
+
+def lookup(client: Any, find: Any) -> Any:
+    """Return find()'s first non-None answer; a young client waits for discovery first."""
+    found: list[Any] = []
+
+    def look() -> bool:
+        answer = find()
+        if answer is not None:
+            found.append(answer)
+        return answer is not None
+
+    wait_until(look, max(0.0, YOUNG_CLIENT_S - client.age()))
+    return found[0] if found else None

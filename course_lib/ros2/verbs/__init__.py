@@ -1,0 +1,1 @@
+"""One module per `ros2` verb family: its arguments, its handler and its output."""

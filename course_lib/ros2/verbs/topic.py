@@ -1,0 +1,260 @@
+"""`ros2 topic list|info [-v]|type|find [-c]|bw` (ros2topic 0.32.2's arguments and output)."""
+
+from __future__ import annotations
+
+import argparse
+import threading
+import time
+from typing import Any
+
+from .. import render
+from ..node.discovery import NAME_WAIT_S, UNKNOWN_NODE
+from ..node.graph import lookup
+from . import options
+from .context import Context, settled_client
+
+__all__ = [
+    "bw",
+    "bw_arguments",
+    "find",
+    "find_arguments",
+    "info",
+    "info_arguments",
+    "topic_command_arguments",
+    "topic_list",
+    "topic_list_arguments",
+    "topics",
+    "type_",
+    "type_arguments",
+]
+
+Parser = argparse.ArgumentParser
+_POLL_S = 0.1
+
+
+def info_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 topic info`."""
+    options.strategy(parser)
+    parser.add_argument("topic_name", help="Name of the ROS topic to get info (e.g. '/chatter')")
+    parser.add_argument(
+        "--verbose",
+        "-v",
+        action="store_true",
+        help="Prints detailed information like the node name, node namespace, topic type, "
+        "topic type hash, GUID, and QoS Profile of the publishers and subscribers to this topic",
+    )
+
+
+def type_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 topic type`."""
+    options.strategy(parser)
+    parser.add_argument("topic_name", help="Name of the ROS topic to get type (e.g. '/chatter')")
+
+
+def find_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 topic find`."""
+    options.strategy(parser)
+    parser.add_argument(
+        "topic_type",
+        help="Name of the ROS topic type to filter for (e.g. 'std_msg/msg/String')",
+    )
+    parser.add_argument(
+        "-c",
+        "--count-topics",
+        action="store_true",
+        help="Only display the number of topics discovered",
+    )
+    parser.add_argument(
+        "--include-hidden-topics", action="store_true", help="Consider hidden topics as well"
+    )
+
+
+def bw_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 topic bw`."""
+    parser.add_argument("topic", help="Topic name to monitor for bandwidth utilization")
+    parser.add_argument(
+        "--window",
+        "-w",
+        type=options.positive_int,
+        default=100,
+        help="maximum window size, in # of messages, for calculating rate (default: 100)",
+        metavar="WINDOW",
+    )
+    options.direct(parser)
+
+
+def topics(ctx: Context, *, include_hidden: bool) -> list[tuple[str, list[str]]]:
+    """Return (topic, types) pairs in the graph's order."""
+    from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
+
+    return [
+        (name, list(types))
+        for name, types in ctx.client.node.get_topic_names_and_types()
+        if include_hidden or not topic_or_service_is_hidden(name)
+    ]
+
+
+def _types_of(ctx: Context, name: str, *, include_hidden: bool) -> list[str] | None:
+    return lookup(ctx.client, lambda: dict(topics(ctx, include_hidden=include_hidden)).get(name))
+
+
+def _all_named(node: Any, name: str) -> bool:
+    infos = [*node.get_publishers_info_by_topic(name), *node.get_subscriptions_info_by_topic(name)]
+    return all(info.node_name != UNKNOWN_NODE for info in infos)
+
+
+def info(args: argparse.Namespace, ctx: Context) -> Any:
+    """`ros2 topic info <topic> [-v]`."""
+    types = _types_of(ctx, args.topic_name, include_hidden=True)
+    if types is None:
+        return f"Unknown topic '{args.topic_name}'"
+    node, name = ctx.client.node, args.topic_name
+    if args.verbose:  # an endpoint seen before its node's name: the name follows
+        from ...core.waiting import wait_until  # rclpy: only where the command really runs
+
+        wait_until(lambda: _all_named(node, name), NAME_WAIT_S)
+    end = "\n\n" if args.verbose else "\n"
+    out = [f"Type: {types[0] if len(types) == 1 else types}{end}"]
+    out.append(f"Publisher count: {node.count_publishers(name)}{end}")
+    if args.verbose:
+        out += [f"{endpoint}{end}" for endpoint in node.get_publishers_info_by_topic(name)]
+    out.append(f"Subscription count: {node.count_subscribers(name)}{end}")
+    if args.verbose:
+        out += [f"{endpoint}{end}" for endpoint in node.get_subscriptions_info_by_topic(name)]
+    ctx.console.out("".join(out))
+    return 0
+
+
+def type_(args: argparse.Namespace, ctx: Context) -> Any:
+    """`ros2 topic type <topic>`: its type(s), or exit 1 silently."""
+    types = _types_of(ctx, args.topic_name, include_hidden=args.include_hidden_topics)
+    if types is None:
+        return 1
+    ctx.console.out("".join(f"{t}\n" for t in types))
+    return 0
+
+
+def find(args: argparse.Namespace, ctx: Context) -> Any:
+    """`ros2 topic find <type> [-c]`."""
+    ctx.client.settle()
+    found = topics(ctx, include_hidden=args.include_hidden_topics)
+    names = [name for name, types in found if args.topic_type in types]
+    text = f"{len(names)}\n" if args.count_topics else "".join(f"{n}\n" for n in names)
+    ctx.console.out(text)
+    return 0
+
+
+def _size(num: float, unit: str) -> str:
+    return {"B": f"{num:.0f} B", "KB": f"{num / 1e3:.2f} KB", "MB": f"{num / 1e6:.2f} MB"}[unit]
+
+
+def bw_line(sizes: list[int], span_s: float) -> str:
+    """Return the two lines `ros2 topic bw` prints for a window of message sizes (pure)."""
+    total = sum(sizes)
+    per_s = total / span_s
+    unit = "B" if per_s < 1e3 else "KB" if per_s < 1e6 else "MB"
+    mean, low, high = total / len(sizes), min(sizes), max(sizes)
+    return (
+        f"{_size(per_s, unit)}/s from {len(sizes)} messages\n"
+        f"\tMessage size mean: {_size(mean, unit)} min: {_size(low, unit)} "
+        f"max: {_size(high, unit)}\n"
+    )
+
+
+def _wait_for_type(ctx: Context, topic: str) -> str | None:
+    types = _types_of(ctx, topic, include_hidden=True)
+    if types is not None:
+        return types[0]
+    ctx.console.out(f"WARNING: topic [{topic}] does not appear to be published yet\n")
+    while not ctx.console.cancelled.wait(_POLL_S):
+        types = dict(topics(ctx, include_hidden=True)).get(topic)
+        if types:
+            return types[0]
+    return None
+
+
+def bw(args: argparse.Namespace, ctx: Context) -> Any:
+    """`ros2 topic bw <topic> [-w N]`: serialized bytes per second, printed each second."""
+    if args.use_sim_time:
+        return "`ros2 topic bw --use-sim-time` is not part of this course: it measures wall time."
+    from rclpy.qos import qos_profile_sensor_data
+
+    from ..msgfill import import_type
+
+    type_name = _wait_for_type(ctx, args.topic)
+    if type_name is None:
+        return 2
+    lock = threading.Lock()
+    window: list[tuple[float, int]] = []
+
+    def received(data: bytes) -> None:
+        with lock:
+            window.append((time.monotonic(), len(data)))
+            del window[: -args.window]
+
+    node = ctx.client.node
+    sub = node.create_subscription(
+        import_type(type_name, "msg"), args.topic, received, qos_profile_sensor_data, raw=True
+    )
+    ctx.console.out(f"Subscribed to [{args.topic}]\n")
+    try:
+        while not ctx.console.cancelled.wait(1.0):
+            with lock:
+                sample = list(window)
+            if len(sample) >= 2:
+                ctx.console.out(bw_line([s for _t, s in sample], time.monotonic() - sample[0][0]))
+    finally:
+        node.destroy_subscription(sub)
+    return 2
+
+
+def topic_command_arguments(parser: Parser) -> None:
+    """The option `ros2 topic` itself takes before its verb."""
+    parser.add_argument(
+        "--include-hidden-topics", action="store_true", help="Consider hidden topics as well"
+    )
+
+
+def topic_list_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 topic list`."""
+    options.strategy(parser)
+    parser.add_argument(
+        "-t", "--show-types", action="store_true", help="Additionally show the topic type"
+    )
+    parser.add_argument(
+        "-c",
+        "--count-topics",
+        action="store_true",
+        help="Only display the number of topics discovered",
+    )
+    parser.add_argument(
+        "--include-hidden-topics", action="store_true", help="Consider hidden topics as well"
+    )
+    parser.add_argument(
+        "-v", "--verbose", action="store_true", help="List full details about each topic"
+    )
+
+
+def topic_list(args: argparse.Namespace, ctx: Context) -> int:
+    """`ros2 topic list [-t] [-c] [-v]`."""
+    client = settled_client(args, ctx)
+    topics = client.topics(include_hidden=args.include_hidden_topics)
+    if args.count_topics:
+        return ctx.console.emit(render.topic_list(topics, count_only=True))
+    if not topics:
+        return 0
+    if args.verbose:
+        node = client.node
+        for publishers in (True, False):
+            lines = ["Published topics:" if publishers else "Subscribed topics:"]
+            for topic in topics:
+                n = (node.count_publishers if publishers else node.count_subscribers)(topic.name)
+                if n:
+                    kind = "publisher" if publishers else "subscriber"
+                    lines.append(
+                        f" * {topic.name} [{', '.join(topic.types)}] {n} {kind}"
+                        + ("s" if n > 1 else "")
+                    )
+            ctx.console.out("\n".join(lines) + "\n\n")
+        return 0
+    return ctx.console.emit(render.topic_list(topics, show_types=args.show_types))

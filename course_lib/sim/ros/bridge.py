@@ -1,0 +1,243 @@
+"""Run the world: physics paced at real time, ROS topics and parameters, the live 3D view."""
+
+from __future__ import annotations
+
+import collections
+import contextlib
+import logging
+import threading
+import time
+from typing import Any
+
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from rclpy.context import Context
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
+from rclpy.qos_overriding_options import QoSOverridingOptions
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan
+from std_msgs.msg import String, UInt32
+
+from ..world.frames import robot_frames
+from ..world.pacing import Pacer, Schedule
+from ..world.physics import Simulation
+from .messages import Frames, MessageFactory
+from .nodes import create_nodes, node_specs
+from .tf import TfFactory, TFMessage
+from .urdf import robot_urdf
+
+__all__ = ["RESET_DONE_TOPIC", "RESET_TOPIC", "Bridge"]
+
+# Hidden from `ros2 topic list` (a leading underscore): World.reset() sends a number on
+# RESET_TOPIC and waits for the same number on RESET_DONE_TOPIC.
+RESET_TOPIC = "/_mujoco/reset"
+RESET_DONE_TOPIC = "/_mujoco/reset_done"
+_LATCHED = QoSProfile(
+    depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL, reliability=ReliabilityPolicy.RELIABLE
+)
+_SENSOR_QOS = QoSProfile(depth=5, reliability=ReliabilityPolicy.BEST_EFFORT)
+# tf2_ros's broadcasters: /tf keeps 100, /tf_static is latched; both accept qos_overrides.
+_TF_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE)
+_OVERRIDABLE = QoSOverridingOptions(
+    [
+        QoSPolicyKind.DEPTH,
+        QoSPolicyKind.DURABILITY,
+        QoSPolicyKind.HISTORY,
+        QoSPolicyKind.RELIABILITY,
+    ]
+)
+_log = logging.getLogger(__name__)
+
+
+class Bridge:
+    """Own the simulation's nodes and run the physics loop in the calling thread."""
+
+    def __init__(self, sim: Simulation, context: Context, *, viewer: Any = None) -> None:
+        self.sim = sim
+        self.viewer = viewer
+        settings = sim.settings
+        self.urdf = robot_urdf(sim.model)
+        self.nodes = create_nodes(context, node_specs(settings, sim.drive, self.urdf))
+        self.messages = factory = MessageFactory(sim, Frames())
+        self.tf = TfFactory(sim, robot_frames(sim.model))
+        self._builders = {
+            "clock": factory.clock,
+            "odom": factory.odometry,
+            "imu": factory.imu,
+            "joint_states": factory.joint_states,
+            "scan": factory.scan,
+            "tf_odom": lambda: self.tf.odom(factory.stamp),
+            "tf_wheels": lambda: self.tf.wheels(factory.stamp),
+        }
+        self.pacer = Pacer(settings.real_time_factor)
+        self.paused = False
+        self._inputs: collections.deque[tuple[str, Any]] = collections.deque()
+        self._wake = threading.Event()
+        self._stop = threading.Event()
+        self.spin_error: BaseException | None = None  # why the ROS thread stopped, if it did
+        self._publishers()
+        mujoco_node = self.nodes["mujoco"]
+        mujoco_node.add_post_set_parameters_callback(self._on_parameters)
+        self.executor = SingleThreadedExecutor(context=context)
+        for node in self.nodes.values():
+            self.executor.add_node(node)
+        self._spin_thread = threading.Thread(target=self._spin, name="sim-ros", daemon=True)
+
+    def _publishers(self) -> None:
+        n = self.nodes
+        self.pub = {
+            "clock": n["mujoco"].create_publisher(
+                Clock, "/clock", 10, qos_overriding_options=_OVERRIDABLE
+            ),
+            "odom": n["turtlebot3_diff_drive"].create_publisher(Odometry, "/odom", 10),
+            "joint_states": n["turtlebot3_joint_state"].create_publisher(
+                JointState, "/joint_states", 10
+            ),
+            "imu": n["turtlebot3_imu"].create_publisher(Imu, "/imu", 10),
+            "scan": n["turtlebot3_laserscan"].create_publisher(LaserScan, "/scan", _SENSOR_QOS),
+            # odom -> base_footprint comes from the drive (Gazebo's publish_odom_tf), the
+            # wheels from robot_state_publisher: two publishers on /tf, as in the tutorial.
+            "tf_odom": n["turtlebot3_diff_drive"].create_publisher(
+                TFMessage, "/tf", _TF_QOS, qos_overriding_options=_OVERRIDABLE
+            ),
+            "tf_wheels": n["robot_state_publisher"].create_publisher(
+                TFMessage, "/tf", _TF_QOS, qos_overriding_options=_OVERRIDABLE
+            ),
+        }
+        self.camera = None
+        if "camera_driver" in n:
+            from .camera import CameraStream
+
+            image_qos = QoSProfile(depth=2, reliability=ReliabilityPolicy.RELIABLE)
+            publishers = (
+                n["camera_driver"].create_publisher(Image, "/camera/image_raw", image_qos),
+                n["camera_driver"].create_publisher(CameraInfo, "/camera/camera_info", image_qos),
+            )
+            self.camera = CameraStream(
+                self.sim.model,
+                self.sim.settings.camera,
+                publishers,
+                n["camera_driver"].get_logger(),
+            )
+        self._description = n["robot_state_publisher"].create_publisher(
+            String, "/robot_description", _LATCHED, qos_overriding_options=_OVERRIDABLE
+        )
+        self._tf_static = n["robot_state_publisher"].create_publisher(
+            TFMessage, "/tf_static", _LATCHED, qos_overriding_options=_OVERRIDABLE
+        )
+        n["turtlebot3_diff_drive"].create_subscription(Twist, "/cmd_vel", self._on_cmd_vel, 10)
+        n["mujoco"].create_subscription(UInt32, RESET_TOPIC, self._on_reset, 10)
+        self._reset_done = n["mujoco"].create_publisher(UInt32, RESET_DONE_TOPIC, 10)
+
+    def _spin(self) -> None:
+        """Serve the nodes' callbacks; a callback's error stops the whole world, logged."""
+        try:
+            self.executor.spin()
+        except Exception as err:
+            if self._stop.is_set() or not self.executor.context.ok():
+                return  # ends when the context shuts down
+            self.spin_error = err
+            _log.error("the simulation's ROS thread stopped", exc_info=err)
+            self.stop()  # a world without its ROS callbacks would ignore every command
+
+    def _on_cmd_vel(self, msg: Twist) -> None:
+        self._inputs.append(("cmd", (msg.linear.x, msg.angular.z)))
+        self._wake.set()
+
+    def _on_reset(self, msg: UInt32) -> None:
+        self._inputs.append(("reset", msg.data))
+        self._wake.set()
+
+    def _on_parameters(self, parameters: list[Any]) -> None:
+        for parameter in parameters:
+            if parameter.name == "paused":
+                self.paused = bool(parameter.value)
+            elif parameter.name == "real_time_factor":
+                self.pacer.set_factor(float(parameter.value))
+        self.pacer.restart()
+        self._wake.set()
+
+    def stop(self) -> None:
+        """Ask the loop to end (safe from a signal handler or another thread)."""
+        self._stop.set()
+        self._wake.set()
+
+    def _publish(self, streams: list[str]) -> None:
+        if "imu" in streams or "scan" in streams:
+            self.sim.sense(scan="scan" in streams)
+        if "camera" in streams:
+            streams = [s for s in streams if s != "camera"]
+            if self.camera is not None and self.camera.wanted:
+                self.camera.offer(self.sim.time, self.sim.data.qpos)
+        self.messages.restamp()
+        for name in streams:
+            self.pub[name].publish(self._builders[name]())
+
+    def _apply_inputs(self) -> None:
+        """Apply commands and resets in the order they arrived."""
+        while self._inputs:
+            kind, value = self._inputs.popleft()
+            if kind == "cmd":
+                self.sim.command(*value)
+            else:
+                self.sim.reset()
+                self.pacer.restart()
+                self._publish(["odom", "joint_states", "tf_odom", "tf_wheels"])
+                self._reset_done.publish(UInt32(data=value))
+
+    def run(self, *, ready: Any = None, max_sim_time_s: float | None = None) -> None:
+        """Step, publish and pace until stop(); call `ready()` once the world is up."""
+        rates = self.sim.settings.rates
+        schedule = Schedule(
+            {
+                "clock": rates.clock_hz,
+                "odom": rates.odom_hz,
+                "joint_states": rates.joint_states_hz,
+                "tf_odom": rates.odom_hz,
+                "tf_wheels": rates.joint_states_hz,
+                "imu": rates.imu_hz,
+                "scan": rates.scan_hz,
+                "camera": rates.camera_hz,
+            },
+            self.sim.timestep,
+            self.sim.time,
+        )
+        self._description.publish(String(data=self.urdf))
+        self._tf_static.publish(self.tf.static(self.messages.stamp))
+        self._spin_thread.start()
+        self._publish(schedule.advance(0))
+        view_period = 1.0 / rates.viewer_hz
+        next_view = 0.0
+        if ready is not None:
+            ready()
+        while not self._stop.is_set():
+            if max_sim_time_s is not None and self.sim.time >= max_sim_time_s:
+                break
+            self._apply_inputs()
+            if self.paused:
+                self._wake.wait(0.1)
+                self._wake.clear()
+                continue
+            steps = schedule.steps_to_next()
+            self.sim.step(steps)
+            self._publish(schedule.advance(steps))
+            now = time.monotonic()
+            if self.viewer is not None and now >= next_view:
+                self.viewer.update(self.sim.data)
+                next_view = max(next_view + view_period, now - view_period)
+            delay = self.pacer.delay(self.sim.time, time.monotonic())
+            if delay > 0 and self._wake.wait(delay):
+                self._wake.clear()
+
+    def close(self) -> None:
+        """Stop spinning and destroy the nodes (the caller shuts the context down)."""
+        self._stop.set()
+        if self.camera is not None:
+            self.camera.close()
+        self.executor.shutdown(timeout_sec=2.0)
+        if self._spin_thread.is_alive():
+            self._spin_thread.join(timeout=2.0)
+        for node in self.nodes.values():
+            with contextlib.suppress(Exception):
+                node.destroy_node()

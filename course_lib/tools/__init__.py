@@ -1,0 +1,1 @@
+"""The course's commands behind the Makefile: doctor, stop, config checks, tests, builds."""

@@ -1,0 +1,133 @@
+"""`python -m course_lib <command>`: the course's own utilities behind the Makefile."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+__all__ = ["main"]
+
+
+def _build(args: argparse.Namespace) -> int:
+    from .workspace import build_workspace
+
+    parser = argparse.ArgumentParser(prog="python -m course_lib build")
+    parser.add_argument("--workspace", type=Path, help="a colcon workspace (default: rosject/)")
+    options = parser.parse_args(args.extra)
+    if options.workspace is None:
+        return build_workspace()
+    return build_workspace(workspace=options.workspace.resolve())
+
+
+def _lab(args: argparse.Namespace) -> int:
+    from ..lab.jupyterlab import run_lab
+    from .config_check import require_valid_config
+
+    require_valid_config()  # a broken config/ stops the lab before JupyterLab starts
+    return run_lab(args.extra)
+
+
+def _hub(args: argparse.Namespace) -> int:
+    from ..hub.launcher import run_hub
+    from ..hub.settings import HUB_YAML
+
+    parser = argparse.ArgumentParser(prog="python -m course_lib hub")
+    parser.add_argument("--config", type=Path, default=HUB_YAML, help="the class's hub.yaml")
+    return run_hub(parser.parse_args(args.extra).config)
+
+
+def _hub_lab(args: argparse.Namespace) -> int:
+    from ..hub.singleuser import run_hub_lab
+
+    return run_hub_lab(args.extra)
+
+
+def _test(args: argparse.Namespace) -> int:
+    from .suite import run_tests
+
+    return run_tests(args.extra)
+
+
+def _notebooks(args: argparse.Namespace) -> int:
+    from .notebook_outputs import refresh_notebooks
+
+    return refresh_notebooks(args.extra)
+
+
+def _check_config(args: argparse.Namespace) -> int:
+    from .config_check import check_config
+
+    parser = argparse.ArgumentParser(
+        prog="python -m course_lib check-config",
+        description="Check every file of config/ alone and together; exit 1 on any problem.",
+    )
+    parser.add_argument("--config", type=Path, help="another folder of instructor YAML")
+    parser.add_argument(
+        "--write-comments",
+        action="store_true",
+        help="rewrite the files' comments from the schema, keeping their values",
+    )
+    options = parser.parse_args(args.extra)
+    folder = options.config.resolve() if options.config else None
+    if options.write_comments:
+        from .config_check import write_comments
+
+        for path in write_comments(folder):
+            print(f"rewrote the comments of {path.name}")
+    report = check_config(folder)
+    print(report.render(), file=sys.stdout if report.ok else sys.stderr)
+    return 0 if report.ok else 1
+
+
+def _doctor(_args: argparse.Namespace) -> int:
+    from .config_check import check_config
+    from .doctor import report
+
+    checked = check_config()
+    print(checked.render())
+    print(report())
+    return 0 if checked.ok else 1
+
+
+def _stop(_args: argparse.Namespace) -> int:
+    from .stop import stop_all
+
+    report = stop_all()
+    print(report.render())
+    return 1 if report.left else 0
+
+
+COMMANDS = {
+    "build": (_build, "build the ROS workspace in rosject/ with colcon"),
+    "lab": (_lab, "start JupyterLab on the first lesson"),
+    "hub": (_hub, "start the class's JupyterHub (config/hub.yaml; as root)"),
+    "hub-lab": (_hub_lab, "a learner's server on the class hub (started by the hub)"),
+    "test": (_test, "run the whole test suite"),
+    "notebooks": (_notebooks, "re-execute the notebooks to refresh their stored outputs"),
+    "check-config": (_check_config, "check every file of config/, alone and together"),
+    "doctor": (_doctor, "say what is installed and which course processes run"),
+    "stop": (_stop, "stop this user's course processes (labs, simulations, nodes, daemons)"),
+}
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run one course command."""
+    parser = argparse.ArgumentParser(prog="python -m course_lib")
+    sub = parser.add_subparsers(dest="command", required=True)
+    for name, (func, summary) in COMMANDS.items():
+        # add_help=False: `-h` reaches the command itself (its own options, or jupyter lab's)
+        sub.add_parser(name, help=summary, add_help=False).set_defaults(func=func)
+    args, extra = parser.parse_known_args(argv)
+    args.extra = extra  # passed through to jupyter lab or pytest
+    from ..core.errors import CourseError
+
+    try:
+        return int(args.func(args))
+    except CourseError as exc:  # expected problems (a runtime folder not private...): no traceback
+        print(exc, file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

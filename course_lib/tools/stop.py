@@ -1,0 +1,12 @@
+"""`make stop`: stop this user's course processes, and say what stopped."""
+
+from __future__ import annotations
+
+from ..processes.stopping import StopReport, stop_course
+
+__all__ = ["stop_all"]
+
+
+def stop_all() -> StopReport:
+    """Stop this user's course processes: SIGINT, SIGTERM, SIGKILL (see processes/stopping.py)."""
+    return stop_course()

@@ -1,0 +1,48 @@
+"""`make test`: the whole suite (unit, integration, notebooks, browser) in one pytest run."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+from ..core.paths import NOTEBOOKS_DIR, REPO_ROOT
+from .testing import TEST_ENV
+
+__all__ = ["pytest_argv", "run_tests"]
+
+
+def pytest_argv(extra: list[str]) -> list[str]:
+    """Return the pytest command line: tests/ and every notebook, two workers."""
+    workers = "2" if (os.cpu_count() or 1) >= 2 else "0"
+    notebooks = ["notebooks"] if any(NOTEBOOKS_DIR.glob("*.ipynb")) else []
+    return [
+        sys.executable,
+        "-m",
+        "pytest",
+        "tests",
+        *notebooks,
+        "--nbval-lax",
+        "--nbval-sanitize-with",
+        "tests/nbval_sanitize.cfg",
+        "-n",
+        workers,
+        "--dist",
+        "loadfile",
+        # Tests of real processes on 2 busy cores: one that fails is run again (up to twice)
+        # and reported as a rerun, so an intermittent failure stays visible in the summary.
+        "--reruns",
+        "2",
+        "--reruns-delay",
+        "1",
+        *extra,
+    ]
+
+
+def run_tests(extra: list[str]) -> int:
+    """Run the suite with the test environment; return pytest's exit code."""
+    env = {**os.environ, **TEST_ENV}
+    code = subprocess.run(pytest_argv(extra), cwd=REPO_ROOT, env=env, check=False).returncode
+    if code == 5:
+        print("pytest collected no tests: the suite is missing.", file=sys.stderr)
+    return code

@@ -1,0 +1,317 @@
+"""deploy/kubernetes/ cannot run here: keep it consistent with what the local hub runs.
+
+The image, the Zero to JupyterHub values and the progress service's manifest are checked
+against the course's own code and figures: the single-user command and default URL of the
+local hub, the progress service's name, URL, port and roles, the capacity figures of
+deploy/capacity.yaml, the learners and admins of config/hub.yaml, and the Dockerfile's base
+image and copied paths. The pure helpers below are also checked on broken inputs.
+"""
+
+from __future__ import annotations
+
+import ast
+import importlib
+import importlib.util
+import json
+import re
+from pathlib import Path
+from typing import Any
+from urllib.parse import urlsplit
+
+import pytest
+import yaml
+
+REPO = Path(__file__).resolve().parents[4]
+DEPLOY = REPO / "deploy"
+KUBE = DEPLOY / "kubernetes"
+IMAGE_COURSE = "/opt/ros2-params-course"
+IMAGE_PYTHON = f"{IMAGE_COURSE}/.venv/bin/python"
+LOCAL_TAIL = ["-m", "course_lib", "hub-lab"]  # after the learner's python, as the local hub
+# Fast DDS: 0.5 MiB per participant; a learner's live processes map about 2.5 MiB, killed ones
+# leave theirs behind until the pod ends. 128 MiB holds about 230 segments.
+SHM_MIN_MIB = 128
+
+
+# --- pure helpers (checked on broken inputs at the end) -------------------------------------
+def names_registry_host(image: str) -> bool:
+    """Return True if image reference `image` starts with a registry host (docker's rule)."""
+    first, sep, _ = image.partition("/")
+    return bool(sep) and ("." in first or ":" in first or first == "localhost")
+
+
+def mib(quantity: str | int | float) -> float:
+    """Return a KubeSpawner byte quantity ("448M", "2G", "256Mi", bytes) in MiB."""
+    match = re.fullmatch(r"(\d+(?:\.\d+)?)\s*([KMGT]i?)?", str(quantity))
+    if match is None:
+        raise ValueError(f"not a byte quantity: {quantity!r}")
+    power = {"K": -1, "M": 0, "G": 1, "T": 2}.get((match[2] or "")[:1])
+    if power is None:
+        return float(match[1]) / 2**20
+    return float(match[1]) * 1024.0**power
+
+
+def dockerfile_instructions(text: str) -> list[tuple[str, str]]:
+    """Return (INSTRUCTION, arguments) pairs of a Dockerfile, continuation lines joined."""
+    joined = re.sub(r"\\\n", " ", text)
+    pairs = []
+    for line in joined.splitlines():
+        line = line.strip()
+        if line and not line.startswith("#"):
+            word, _, rest = line.partition(" ")
+            pairs.append((word.upper(), rest.strip()))
+    return pairs
+
+
+def copied_sources(instructions: list[tuple[str, str]]) -> list[str]:
+    """Return the source paths of the Dockerfile's COPY/ADD instructions (not --from=)."""
+    sources = []
+    for word, rest in instructions:
+        if word in ("COPY", "ADD"):
+            parts = [p for p in rest.split() if not p.startswith("--")]
+            if "--from=" not in rest:
+                sources += parts[:-1]
+    return sources
+
+
+def shm_mib(singleuser: dict[str, Any]) -> float:
+    """Return the size of the memory-backed volume mounted at /dev/shm (0 if there is none)."""
+    storage = singleuser.get("storage") or {}
+    mounts = [m for m in storage.get("extraVolumeMounts") or [] if m["mountPath"] == "/dev/shm"]
+    for mount in mounts:
+        for volume in storage.get("extraVolumes") or []:
+            empty = volume.get("emptyDir") or {}
+            if volume["name"] == mount["name"] and empty.get("medium") == "Memory":
+                return mib(empty.get("sizeLimit", "0"))
+    return 0.0
+
+
+def local_spawner_tail(source: str) -> list[str] | None:
+    """Return the literal words after the python of `c.Spawner.cmd = [...]` in `source`."""
+    for node in ast.walk(ast.parse(source)):
+        if (
+            isinstance(node, ast.Assign)
+            and ast.unparse(node.targets[0]) == "c.Spawner.cmd"
+            and isinstance(node.value, ast.List)
+        ):
+            return [ast.literal_eval(e) for e in node.value.elts[1:]]
+    return None
+
+
+# --- the files ------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def values() -> dict[str, Any]:
+    return yaml.safe_load((KUBE / "values.yaml").read_text())
+
+
+@pytest.fixture(scope="module")
+def progress() -> dict[str, dict[str, Any]]:
+    documents = list(yaml.safe_load_all((KUBE / "progress.yaml").read_text()))
+    return {doc["kind"]: doc for doc in documents if doc}
+
+
+@pytest.fixture(scope="module")
+def capacity() -> dict[str, Any]:
+    return yaml.safe_load((DEPLOY / "capacity.yaml").read_text())
+
+
+@pytest.fixture(scope="module")
+def dockerfile() -> list[tuple[str, str]]:
+    return dockerfile_instructions((KUBE / "Dockerfile").read_text())
+
+
+def _course_module(name: str) -> Any:
+    """Return module `name` of the course, or None where this branch does not have it yet.
+
+    A module that exists but fails to import fails the test (no silent fallback).
+    """
+    try:
+        found = importlib.util.find_spec(name)
+    except ModuleNotFoundError:
+        found = None
+    return importlib.import_module(name) if found else None
+
+
+def _service() -> tuple[str, str]:
+    progress = _course_module("course_lib.hub.progress")
+    if progress is None:
+        return "course-progress", "COURSE_PROGRESS_URL"
+    return progress.SERVICE_NAME, progress.PROGRESS_URL_ENV
+
+
+def test_files_parse(values, progress) -> None:
+    assert set(values) >= {"hub", "singleuser", "cull"}
+    assert set(progress) == {"PersistentVolumeClaim", "Deployment", "Service"}
+
+
+def test_singleuser_runs_the_local_hubs_command(values, dockerfile) -> None:
+    cmd = values["singleuser"]["cmd"]
+    assert cmd == [IMAGE_PYTHON, *LOCAL_TAIL]
+    cmd_line = [json.loads(rest) for word, rest in dockerfile if word == "CMD"]
+    assert cmd_line == [cmd], "the image's CMD is the spawner's command"
+    hub_config = REPO / "course_lib" / "hub" / "hub_config.py"
+    if hub_config.exists():
+        assert local_spawner_tail(hub_config.read_text()) == LOCAL_TAIL
+    singleuser = _course_module("course_lib.hub.singleuser")
+    default_url = "/lab/tree/notebooks/01_setup_check.ipynb"
+    assert values["singleuser"]["defaultUrl"] == getattr(singleuser, "DEFAULT_URL", default_url)
+
+
+def test_progress_service_is_one_name_one_port(values, progress) -> None:
+    name, url_env = _service()
+    assert list(values["hub"]["services"]) == [name]
+    url = urlsplit(values["hub"]["services"][name]["url"])
+    assert url.hostname == name == progress["Service"]["metadata"]["name"]
+    port = url.port
+    service_port = progress["Service"]["spec"]["ports"][0]
+    assert service_port["port"] == port
+    container = progress["Deployment"]["spec"]["template"]["spec"]["containers"][0]
+    assert [p["containerPort"] for p in container["ports"]] == [port]
+    env = {e["name"]: e for e in container["env"]}
+    assert urlsplit(env["JUPYTERHUB_SERVICE_URL"]["value"]).port == port
+    assert env["JUPYTERHUB_SERVICE_NAME"]["value"] == name
+    assert env["JUPYTERHUB_SERVICE_PREFIX"]["value"] == f"/services/{name}/"
+    secret = env["JUPYTERHUB_API_TOKEN"]["valueFrom"]["secretKeyRef"]
+    assert secret["key"] == f"hub.services.{name}.apiToken"
+    assert values["singleuser"]["extraEnv"][url_env] == f"http://{name}:{port}/services/{name}/"
+    egress = values["singleuser"]["networkPolicy"]["egress"]
+    assert {p["port"] for rule in egress for p in rule["ports"]} == {port}
+    assert container["args"][:3] == [IMAGE_PYTHON, "-m", "course_lib.hub.progress"]
+    assert container["args"][3:] == ["--db", "/data/progress.sqlite"]
+    mounts = {m["mountPath"] for m in container["volumeMounts"]}
+    assert "/data" in mounts
+    progress_module = _course_module("course_lib.hub.progress")
+    if progress_module is not None:  # the local hub's entry: same command, same OAuth settings
+        spec = progress_module.service_spec(IMAGE_PYTHON, Path("/data/progress.sqlite"), port)
+        assert container["args"] == spec["command"]
+        entry = values["hub"]["services"][name]
+        for key in ("oauth_no_confirm", "display"):
+            assert entry.get(key) == spec.get(key), key
+    image = progress["Deployment"]["spec"]["template"]["spec"]["containers"][0]["image"]
+    single = values["singleuser"]["image"]
+    assert image == f"{single['name']}:{single['tag']}", "the same image as the learners'"
+
+
+def test_roles_mirror_the_progress_service(values) -> None:
+    name, _ = _service()
+    progress_module = _course_module("course_lib.hub.progress")
+    if progress_module is None:
+        wanted = [
+            {
+                "name": f"{name}-service",
+                "scopes": ["list:users", "read:users:name"],
+                "services": [name],
+            },
+            {"name": "user", "scopes": ["self", f"access:services!service={name}"]},
+            {
+                "name": "server",
+                "scopes": [
+                    "users:activity!user",
+                    "access:servers!server",
+                    f"access:services!service={name}",
+                ],
+            },
+        ]
+    else:
+        wanted = progress_module.roles()
+    loaded = values["hub"]["loadRoles"]
+    assert sorted(loaded) == sorted(r["name"] for r in wanted)
+    for role in wanted:
+        mine = loaded[role["name"]]
+        for key in ("scopes", "users", "services", "groups"):
+            assert sorted(mine.get(key, [])) == sorted(role.get(key, [])), (role["name"], key)
+
+
+def test_requests_are_the_measured_figures(values, capacity) -> None:
+    from bench._capacity_report import requests
+
+    kube = capacity["kubernetes"]
+    per = capacity["per_learner"]
+    assert kube == requests(per["cpu_cores"], per["memory_mib_alone"])
+    single = values["singleuser"]
+    assert single["cpu"]["guarantee"] == kube["guarantee"]["cpu"] >= per["cpu_cores"]
+    assert single["cpu"]["limit"] == kube["limit"]["cpu"]
+    assert single["memory"]["guarantee"] == kube["guarantee"]["memory"]
+    assert mib(single["memory"]["guarantee"]) >= per["memory_mib_alone"]
+    assert single["memory"]["limit"] == kube["limit"]["memory"]
+    assert capacity["measured"]["date"] and capacity["measured"]["host"]
+
+
+def test_shm_is_memory_backed_and_big_enough(values) -> None:
+    assert shm_mib(values["singleuser"]) >= SHM_MIN_MIB
+
+
+def test_class_and_culler_match_the_local_hub(values) -> None:
+    hub_yaml = REPO / "config" / "hub.yaml"
+    if not hub_yaml.exists():
+        pytest.skip("config/hub.yaml (the local hub's class) is not on this branch")
+    local = yaml.safe_load(hub_yaml.read_text())
+    auth = values["hub"]["config"]["Authenticator"]
+    assert sorted(auth["allowed_users"]) == sorted(local["learners"])
+    assert sorted(auth["admin_users"]) == sorted(local["admins"])
+    assert values["cull"]["enabled"] is bool(local["idle_minutes"])
+    assert values["cull"]["timeout"] == local["idle_minutes"] * 60
+
+
+def test_image_is_debian_12_python_with_no_registry_host(dockerfile) -> None:
+    bases = [rest.split()[0] for word, rest in dockerfile if word == "FROM"]
+    assert bases == ["python:3.11-slim-bookworm"]
+    assert not any(names_registry_host(base) for base in bases)
+
+
+def test_image_copies_paths_that_exist_and_runs_as_the_learner(dockerfile) -> None:
+    sources = copied_sources(dockerfile)
+    assert sources, "the image copies the course"
+    missing = [s for s in sources if not (REPO / s).exists()]
+    assert not missing, f"COPY sources missing from the repo: {missing}"
+    words = dict(dockerfile)
+    assert any(w == "WORKDIR" and r == IMAGE_COURSE for w, r in dockerfile)
+    assert any(w == "RUN" and r.startswith("make setup") for w, r in dockerfile)
+    assert words["USER"] == "1000"
+    env = " ".join(r for w, r in dockerfile if w == "ENV")
+    assert "HOME=/home/jovyan" in env
+
+
+def test_readme_section_is_there() -> None:
+    readme = (REPO / "README.md").read_text()
+    heading = "## A class on Kubernetes (Zero to JupyterHub)"
+    assert heading in readme
+    section = readme.split(heading, 1)[1]
+    for path in ("deploy/kubernetes/Dockerfile", "values.yaml", "progress.yaml", "capacity"):
+        assert path in section
+
+
+# --- the helpers fail on broken inputs --------------------------------------------------------
+@pytest.mark.parametrize(
+    ("image", "named"),
+    [
+        ("python:3.11-slim-bookworm", False),
+        ("library/python:3.11", False),
+        ("images.example.org/jupyter/base", True),
+        ("registry.local:5000/python:3.11", True),
+        ("localhost/python", True),
+    ],
+)
+def test_registry_host_rule(image: str, named: bool) -> None:
+    assert names_registry_host(image) is named
+
+
+def test_broken_files_fail_the_checks() -> None:
+    assert mib("448M") == 448 and mib("2G") == 2048 and mib("256Mi") == 256
+    with pytest.raises(ValueError):
+        mib("lots")
+    small = {
+        "storage": {
+            "extraVolumes": [
+                {"name": "dshm", "emptyDir": {"medium": "Memory", "sizeLimit": "64Mi"}}
+            ],
+            "extraVolumeMounts": [{"name": "dshm", "mountPath": "/dev/shm"}],
+        }
+    }
+    assert shm_mib(small) < SHM_MIN_MIB
+    on_disk = json.loads(json.dumps(small))
+    on_disk["storage"]["extraVolumes"][0]["emptyDir"] = {"sizeLimit": "1Gi"}
+    assert shm_mib(on_disk) == 0.0
+    broken = dockerfile_instructions("FROM python:3.11\nCOPY no_such_dir/ \\\n  /opt/x/\n")
+    assert copied_sources(broken) == ["no_such_dir/"]
+    assert not (REPO / "no_such_dir").exists()
+    assert local_spawner_tail('c.Spawner.cmd = [p, "-m", "course_lib", "lab"]') != LOCAL_TAIL

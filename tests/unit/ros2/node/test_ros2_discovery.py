@@ -1,0 +1,172 @@
+"""How long a fresh client waits for discovery (pure: a fake clock and a scripted graph)."""
+
+from __future__ import annotations
+
+import argparse
+from dataclasses import replace
+
+import pytest
+
+from course_lib.core.paths import PACKAGE_DIR
+from course_lib.core.procfs import udp_ports
+from course_lib.ros2.command import parsers
+from course_lib.ros2.node.discovery import (
+    DEFAULT_TIMING,
+    NAME_WAIT_S,
+    DiscoveryTiming,
+    GraphView,
+    bound_participants,
+    participant_prefix,
+    profile_timing,
+    requested_spin_time,
+    timing_from_profile,
+    wait_settled,
+)
+
+PROFILE = PACKAGE_DIR / "dds" / "fastdds_profile.xml"
+TIMING = DiscoveryTiming(floor_s=0.35, quiet_s=0.1, unknown_wait_s=3.5)
+EMPTY = GraphView(frozenset(), frozenset())
+NODE = GraphView(frozenset({"/param_vel_node"}), frozenset({"/cmd_vel"}))
+HALF_KNOWN = GraphView(frozenset(), frozenset({"/cmd_vel"}), unknown_endpoints=3)
+
+
+def test_course_profile_gives_its_announcement_period_plus_endpoint_exchange() -> None:
+    timing = profile_timing(PROFILE)
+    assert timing == DiscoveryTiming(floor_s=0.35, quiet_s=0.1, unknown_wait_s=3.5)
+    assert timing.warm_s == pytest.approx(0.45)
+
+
+def test_fast_dds_defaults_when_no_profile_or_an_unreadable_one(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    assert DEFAULT_TIMING.floor_s == pytest.approx(3.1)
+    bad = tmp_path / "bad.xml"
+    bad.write_text("<profiles><participant>")
+    assert profile_timing(bad) == DEFAULT_TIMING
+    assert profile_timing(tmp_path / "missing.xml") == DEFAULT_TIMING
+    period = "<leaseAnnouncement><sec>0</sec><nanosec>250000000</nanosec></leaseAnnouncement>"
+    assert period in PROFILE.read_text()
+    slower = PROFILE.read_text().replace(
+        period, period.replace("0</sec><nanosec>25", "1</sec><nanosec>")
+    )
+    assert timing_from_profile(slower).floor_s == pytest.approx(1.1)
+
+
+class Graph:
+    """A scripted graph on a fake clock: `views` maps a time to what is seen from then on."""
+
+    def __init__(self, views: dict[float, GraphView]) -> None:
+        self.now = 0.0
+        self.views = sorted(views.items())
+
+    def clock(self) -> float:
+        return self.now
+
+    def sleep(self, seconds: float) -> None:
+        self.now += seconds
+
+    def view(self) -> GraphView:
+        return [v for t, v in self.views if t <= self.now + 1e-9][-1]
+
+    def settle(self, *, born: float, min_age_s: float = 0.0, start: float = 0.0) -> GraphView:
+        self.now = start
+        return wait_settled(
+            self.view,
+            born=born,
+            timing=TIMING,
+            min_age_s=min_age_s,
+            clock=self.clock,
+            sleep=self.sleep,
+        )
+
+
+def test_a_fresh_client_waits_for_the_node_announced_late() -> None:
+    graph = Graph({0.0: EMPTY, 0.3: NODE})
+    assert graph.settle(born=0.0) == NODE
+    assert 0.35 <= graph.now <= 0.45
+
+
+def test_a_fresh_client_with_an_empty_graph_answers_at_its_floor() -> None:
+    graph = Graph({0.0: EMPTY})
+    assert graph.settle(born=0.0) == EMPTY
+    assert graph.now == pytest.approx(0.35, abs=0.02)
+
+
+def test_a_warm_client_answers_at_once() -> None:
+    graph = Graph({0.0: NODE})
+    assert graph.settle(born=-60.0) == NODE
+    assert graph.now == 0.0
+
+
+def test_a_node_known_by_its_endpoints_only_is_waited_for_bounded() -> None:
+    graph = Graph({0.0: HALF_KNOWN, 2.0: NODE})
+    assert graph.settle(born=-60.0) == NODE  # even a warm client waits for its name
+    assert 2.0 <= graph.now <= 2.1
+    late = Graph({0.0: HALF_KNOWN, 5.0: NODE})  # a loaded machine: the name comes late
+    assert late.settle(born=0.0) == NODE
+    assert late.now == pytest.approx(5.0, abs=0.1)
+    stuck = Graph({0.0: HALF_KNOWN})
+    assert stuck.settle(born=0.0) == HALF_KNOWN
+    assert stuck.now == pytest.approx(NAME_WAIT_S, abs=0.02)
+
+
+def test_spin_time_is_a_minimum_age() -> None:
+    graph = Graph({0.0: NODE})
+    graph.settle(born=0.0, min_age_s=1.5)
+    assert graph.now == pytest.approx(1.5, abs=0.02)
+    graph.settle(born=-60.0, min_age_s=1.5)  # a warm daemon ignores it, as ros2cli's does
+    assert graph.now == 0.0
+
+
+def test_spin_time_typed_or_left_at_its_default() -> None:
+    def spin(argv: list[str]) -> float:
+        args, _parser = parsers.parse(["node", "list", *argv])
+        assert args is not None
+        return requested_spin_time(args)
+
+    token = parsers.output_sink.set(parsers._Sink())
+    try:
+        assert spin([]) == 0.0
+        assert spin(["--spin-time", "0.5"]) == 0.5
+        assert spin(["--spin-time", "2"]) == 2.0
+    finally:
+        parsers.output_sink.reset(token)
+    assert requested_spin_time(argparse.Namespace()) == 0.0
+
+
+UDP = """  sl  local_address rem_address   st tx_queue rx_queue tr tm->when retrnsmt   uid
+   0: 00000000:6A18 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+   1: 00000000:6A19 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+   2: 00000000:6A1A 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+   3: 00000000:6A1B 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+   4: 00000000:6A0E 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+   5: 00000000:1CE8 00000000:0000 07 00000000:00000000 00:00000000 00000000     0
+"""
+
+
+def test_participants_are_counted_by_their_metatraffic_ports() -> None:
+    # 0x6A18 = 27160 = 7400 + 250 * 79 + 10: participants 0 and 1 of domain 79 (metatraffic
+    # and user ports); 0x6A0E is domain 79's multicast port, 0x1CE8 domain 0's.
+    assert bound_participants(79, udp_ports([UDP])) == 2
+    assert bound_participants(79, udp_ports([UDP, UDP])) == 2
+    assert bound_participants(78, udp_ports([UDP])) == 0
+    assert participant_prefix(list(range(16))) == tuple(range(12))
+
+
+def test_a_counting_client_answers_once_it_met_every_participant() -> None:
+    graph = Graph(
+        {0.0: replace(EMPTY, missing_participants=1), 0.6: replace(NODE, missing_participants=0)}
+    )
+    assert graph.settle(born=0.0).nodes == NODE.nodes
+    assert 0.6 <= graph.now <= 0.72  # past the time-based floor: it waited for the node
+    alone = Graph({0.0: replace(EMPTY, missing_participants=0)})
+    alone.settle(born=0.0)
+    assert alone.now == pytest.approx(0.1, abs=0.02)  # nothing else runs: quiet is enough
+
+
+def test_an_unseen_participant_holds_only_a_young_client_and_bounded() -> None:
+    stuck = replace(NODE, missing_participants=1)  # e.g. a suspended process
+    young = Graph({0.0: stuck})
+    young.settle(born=0.0)
+    assert young.now == pytest.approx(3.5, abs=0.02)
+    warm = Graph({0.0: stuck})
+    warm.settle(born=-60.0)
+    assert warm.now == 0.0
