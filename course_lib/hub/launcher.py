@@ -5,10 +5,12 @@ from __future__ import annotations
 import contextlib
 import os
 import secrets
+import shutil
 import signal
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 import urllib.error
 import urllib.request
@@ -23,13 +25,15 @@ from .environment import build_environment, check_world_executable
 from .plan import PLAN_ENV, HubPlan, write_plan
 from .proxy import install_proxy, missing_npm, proxy_command
 from .settings import HUB_YAML, HubSettings, load_hub_settings
-from .tied import tie_to_parent
+from .tied import tied_preexec
+from .wall import wall_problem
 
 __all__ = ["run_hub"]
 
 CONFIG_FILE = Path(__file__).resolve().parent / "jupyterhub_config.py"
 READY_TIMEOUT_S = 60.0
 STOP_TIMEOUT_S = 90.0  # the hub stops every learner's server first
+NO_WALL_ENV = "COURSE_HUB_NO_WALL"  # set: no network of their own for learners (bench, tests)
 
 
 def _key_line(path: Path, key: str) -> int | None:
@@ -77,12 +81,38 @@ def _check_before_start(settings: HubSettings, source: Path) -> None:
     check_world_executable(Path(settings.python))
 
 
+def _wall_sockets(port: int) -> tuple[bool, str]:
+    """Say in one line whether learners get a network of their own; return (on, folder).
+
+    With the wall, each learner's server socket lives in `<folder>/<name>/` (0700, theirs):
+    the folder itself lets anyone through (0711) but lists nothing.
+    """
+    problem = "turned off by COURSE_HUB_NO_WALL" if os.environ.get(NO_WALL_ENV) else wall_problem()
+    if problem is not None:
+        print(
+            f"The domain wall is off: this host gives no learner a network of their own "
+            f"({problem}); another account that sets a learner's ROS_DOMAIN_ID reaches their "
+            "nodes, and their lab's ports answer every account (README: A class on JupyterHub)."
+        )
+        return False, ""
+    run = Path("/run") if Path("/run").is_dir() else Path(tempfile.gettempdir())
+    folder = run / f"ros2-params-course-hub-{port}"  # one hub on a port at a time
+    shutil.rmtree(folder, ignore_errors=True)  # the last start's, with its learners' folders
+    folder.mkdir(mode=0o711)
+    folder.chmod(0o711)
+    print("The domain wall is on: each learner's lab runs in a network of its own.")
+    return True, str(folder)
+
+
 def _plan(settings: HubSettings, state: Path, course: Path, proxy: Path) -> HubPlan:
     admin_password = None
     if settings.authenticator == "shared-password":
         admin_password = secrets.token_urlsafe(32)
         (state / "admin-password.txt").write_text(admin_password + "\n", encoding="utf-8")
+    wall, sockets = _wall_sockets(settings.port)
     return HubPlan(
+        wall=wall,
+        sockets=sockets,
         ip=settings.ip,
         port=settings.port,
         hub_port=_free_port(),
@@ -150,7 +180,7 @@ def run_hub(config: Path = HUB_YAML) -> int:
     signal.signal(signal.SIGTERM, signal.default_int_handler)
     hub = subprocess.Popen(
         [sys.executable, "-m", "jupyterhub", "-f", str(CONFIG_FILE)],
-        cwd=state, env=env, preexec_fn=tie_to_parent,
+        cwd=state, env=env, preexec_fn=tied_preexec(),
     )  # fmt: skip
     host = "127.0.0.1" if settings.ip in ("0.0.0.0", "::") else settings.ip
     url = f"http://{host}:{settings.port}/"
