@@ -12,10 +12,10 @@ from typing import Any
 
 from .domain import lease_domain
 from .lab_leftovers import clean_up_killed_labs, workspaces_dir
-from .lab_markers import lab_clone_marker, lab_marker
+from .lab_markers import lab_clone_marker, lab_marker, lab_start_marker
 from .machine.protocol import SOCKET_ENV
 from .paths import NOTEBOOKS_DIR, PACKAGE_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
-from .processes import ChildProcess, spawn
+from .processes import ChildProcess, spawn, start_time
 from .ros2 import start_daemon
 from .session import session_env
 
@@ -114,6 +114,8 @@ def run_lab(
     if note:
         print(note)
     lease = lease_domain()
+    started = lab_start_marker(os.getpid())
+    started.write_text(start_time(os.getpid()) or "")  # first: it vouches for the others
     marker = lab_marker(os.getpid())
     marker.write_text(str(lease.domain_id))
     clone = lab_clone_marker(os.getpid())
@@ -145,6 +147,7 @@ def run_lab(
         machine.stop()
         marker.unlink(missing_ok=True)
         clone.unlink(missing_ok=True)
+        started.unlink(missing_ok=True)
         shutil.rmtree(workspaces, ignore_errors=True)
         lease.release()
     return code or 0

@@ -19,6 +19,7 @@ from pathlib import Path
 import yaml
 
 from ..errors import ConfigError, CourseError
+from ..processes import start_time
 from ..signalling import send
 from .accounts import ensure_accounts, refuse_system_accounts
 from .environment import build_environment, check_world_executable
@@ -28,7 +29,7 @@ from .settings import HUB_YAML, HubSettings, load_hub_settings
 from .tied import tied_preexec
 from .wall import wall_problem
 
-__all__ = ["run_hub"]
+__all__ = ["forget_stale_proxy_pid", "run_hub"]
 
 CONFIG_FILE = Path(__file__).resolve().parent / "jupyterhub_config.py"
 READY_TIMEOUT_S = 60.0
@@ -130,6 +131,42 @@ def _plan(settings: HubSettings, state: Path, course: Path, proxy: Path) -> HubP
     )
 
 
+def _boot_time() -> float:
+    for line in Path("/proc/stat").read_text().splitlines():
+        if line.startswith("btime "):
+            return float(line.split()[1])
+    return 0.0
+
+
+def forget_stale_proxy_pid(pid_file: Path, proxy: Path) -> str | None:
+    """Remove `pid_file` unless it names the hub's own proxy, still running; return one line
+    saying what was left alone, or None.
+
+    JupyterHub stops (SIGTERM, then SIGKILL, as root) whatever process the proxy's pid file
+    names when it starts. After a hub was killed, that pid may be anyone's by now: only a
+    process that runs this proxy and started before the file was written is the old proxy.
+    """
+    try:
+        text = pid_file.read_text().strip()
+        written = pid_file.stat().st_mtime
+    except OSError:
+        return None
+    pid = int(text) if text.isdigit() else 0
+    started = start_time(pid) if pid > 0 else None
+    if started is not None:
+        try:
+            command = Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode()
+        except OSError:
+            command = ""
+        began = _boot_time() + int(started) / os.sysconf("SC_CLK_TCK")
+        if str(proxy) in command and began <= written + 1.0:
+            return None  # the killed hub's own proxy: JupyterHub stops it
+    pid_file.unlink(missing_ok=True)
+    if started is None:
+        return None
+    return f"{pid_file} named pid {pid}, which is not the hub's proxy any more: it is left alone."
+
+
 def _wait_ready(hub: subprocess.Popen[bytes], url: str) -> None:
     deadline = time.monotonic() + READY_TIMEOUT_S
     while time.monotonic() < deadline:
@@ -175,6 +212,9 @@ def run_hub(config: Path = HUB_YAML) -> int:
             print(f"Created the Unix account {account.name!r}.")
     if passwords:
         print(f"Their initial passwords are in {passwords} (root only): hand them out.")
+    note = forget_stale_proxy_pid(state / "proxy.pid", proxy)
+    if note:
+        print(note)
     plan = write_plan(_plan(settings, state, course, proxy), state / "plan.json")
     env = {**os.environ, PLAN_ENV: str(plan)}
     signal.signal(signal.SIGTERM, signal.default_int_handler)

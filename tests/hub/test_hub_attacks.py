@@ -1,5 +1,6 @@
 """Attack tests on a real class hub (`python -m course_lib hub`): another account of the host
-cannot reach a learner's lab, neither through ROS 2 (their domain id) nor through TCP.
+cannot reach a learner's lab, neither through ROS 2 (their domain id) nor through TCP, nor
+stop one by binding the domain lease ports; a stale proxy pid file gets nobody signalled.
 
 The victim signs in over HTTP and starts, in a real lab terminal, what a lab runs: the
 tutorial's node, turtlesim (its window's web port) and the 3D view's server. The attacker is
@@ -44,10 +45,23 @@ time.sleep(3600)
 def class_hub(tmp_path_factory: pytest.TempPathFactory) -> Iterator[ClassHub]:
     if os.geteuid() != 0:
         pytest.skip("a class hub creates Unix accounts: run as root (CI does)")
-    started = ClassHub((VICTIM, INTRUDER), (ADMIN,), tmp_path_factory.mktemp("wall-hub"))
+    folder = tmp_path_factory.mktemp("wall-hub")
+    # a hub killed outright left its proxy's pid file; the pid is another process's by now
+    bystander = subprocess.Popen(["sleep", "600"])
+    (folder / "state").mkdir(mode=0o700)
+    (folder / "state" / "proxy.pid").write_text(f"{bystander.pid}\n")
+    try:
+        started = ClassHub((VICTIM, INTRUDER), (ADMIN,), folder)
+    except BaseException:
+        bystander.kill()
+        bystander.wait()
+        raise
+    started.bystander = bystander  # type: ignore[attr-defined]
     try:
         yield started
     finally:
+        bystander.kill()
+        bystander.wait()
         (Path(started.state).parent / "hub.log").write_text(started.log(), encoding="utf-8")
         started.stop()  # removes the accounts
 
@@ -110,6 +124,12 @@ def victim_lab(class_hub: ClassHub, leases_held: None) -> Iterator[RestTerminal]
         yield terminal
     finally:
         terminal.close()
+
+
+def test_a_stale_proxy_pid_file_gets_nobody_signalled(class_hub: ClassHub) -> None:
+    bystander = class_hub.bystander  # type: ignore[attr-defined]
+    assert bystander.poll() is None, f"the hub signalled pid {bystander.pid} ({bystander.poll()})"
+    assert "which is not the hub's proxy any more: it is left alone" in class_hub.log()
 
 
 def test_bound_lease_ports_leave_a_hub_learner_working(
