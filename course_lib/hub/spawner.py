@@ -81,6 +81,7 @@ class CourseSpawner(LocalProcessSpawner):
 
     domains: ClassVar[HubDomains] = HubDomains()
     _relay: Relay | None = None
+    _network: int | None = None  # the inode of the lab's network namespace
     domain_id: int | None = None
 
     def make_preexec_fn(self, name: str) -> Callable[[], None]:
@@ -128,6 +129,7 @@ class CourseSpawner(LocalProcessSpawner):
         self._prepare_socket_folder()
         self.port = _SERVER_DEFAULT_PORT
         await super().start()
+        self._network = os.stat(f"/proc/{self.pid}/ns/net").st_ino
         self._relay = Relay(self.pid, list(self.relay_ports), self.log.warning)
         await self._relay.start()
         url = f"http+unix://{quote(str(self.socket_path()), safe='')}"
@@ -155,6 +157,29 @@ class CourseSpawner(LocalProcessSpawner):
             self.log.warning("Stopping %s's leftover processes took too long", self.user.name)
             return
         self.log.info("After %s's server stopped: %s", self.user.name, text or "nothing left")
+        if self._network is not None:  # the lab's network ends with it, as a pod would
+            swept = sweep_network(self._network, pwd.getpwnam(self.user.name).pw_uid)
+            if swept:
+                self.log.info("Stopped what was left in %s's lab: %s", self.user.name, swept)
+            self._network = None
+
+
+def sweep_network(network: int, uid: int) -> list[int]:
+    """SIGKILL every process of `uid` still in the network namespace whose inode is
+    `network` (a learner's own programs, after their server stopped); return their pids.
+    Both are checked for each process before the signal: nothing else is ever signalled."""
+    swept = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            if entry.stat().st_uid != uid or os.stat(entry / "ns" / "net").st_ino != network:
+                continue
+            send(int(entry.name), signal.SIGKILL, reason="its lab's server stopped")
+            swept.append(int(entry.name))
+        except (OSError, ProcessLookupError):
+            continue
+    return swept
 
 
 def leftover_stop_argv(python: str) -> list[str]:
