@@ -17,7 +17,8 @@ from course_lib.hub.tied import tied_command
 _PARENT = (
     "import os, subprocess, sys\n"
     "from course_lib.hub.tied import tied_command\n"
-    "child = subprocess.Popen(tied_command('sleep', '30'))\n"
+    "child = subprocess.Popen(tied_command('sleep', '30'), stdout=subprocess.DEVNULL,\n"
+    "                         stderr=subprocess.DEVNULL)\n"
     "print(child.pid, flush=True)\n"
     "os._exit(0)\n"
 )
