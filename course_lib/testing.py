@@ -8,7 +8,7 @@ import sys
 
 from .domain import DOMAIN_ENV
 from .paths import NOTEBOOKS_DIR, REPO_ROOT
-from .processes import NAME_ENV, OWNER_ENV, OWNER_NS_ENV
+from .processes import NAME_ENV, OWNER_ENV, OWNER_NS_ENV, SPAWNED_ENV
 from .session import SESSION_DOMAIN_ENV
 
 __all__ = ["TEST_ENV", "independent_env", "pytest_argv", "run_tests"]
@@ -29,7 +29,8 @@ def independent_env(**extra: str) -> dict[str, str]:
     Like a fresh `make lab` or kernel: this process's domain, owner tag and lab are left out
     (the child leases a domain itself), and the test settings are in.
     """
-    own = (DOMAIN_ENV, SESSION_DOMAIN_ENV, OWNER_ENV, OWNER_NS_ENV, NAME_ENV, "COURSE_LAB")
+    own = (DOMAIN_ENV, SESSION_DOMAIN_ENV, OWNER_ENV, OWNER_NS_ENV, NAME_ENV, SPAWNED_ENV)
+    own += ("COURSE_LAB",)
     env = {k: v for k, v in os.environ.items() if k not in own}
     return {**env, **TEST_ENV, **extra}
 
