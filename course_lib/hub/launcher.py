@@ -215,7 +215,8 @@ def run_hub(config: Path = HUB_YAML) -> int:
     note = forget_stale_proxy_pid(state / "proxy.pid", proxy)
     if note:
         print(note)
-    plan = write_plan(_plan(settings, state, course, proxy), state / "plan.json")
+    plan_data = _plan(settings, state, course, proxy)
+    plan = write_plan(plan_data, state / "plan.json")
     env = {**os.environ, PLAN_ENV: str(plan)}
     signal.signal(signal.SIGTERM, signal.default_int_handler)
     hub = subprocess.Popen(
@@ -234,3 +235,5 @@ def run_hub(config: Path = HUB_YAML) -> int:
         return _stop(hub)
     finally:
         _stop(hub)
+        if plan_data.sockets:  # every server has stopped: their socket folders go too
+            shutil.rmtree(plan_data.sockets, ignore_errors=True)
