@@ -74,6 +74,9 @@ def configure(c: Any, plan: HubPlan) -> None:
     venv_bin = str(Path(plan.learner_python).parent)
     c.Spawner.environment = {"PATH": f"{venv_bin}:{LEARNER_PATH}", **server_env}
     c.Spawner.start_timeout = 120
+    c.CourseSpawner.wall = plan.wall
+    c.CourseSpawner.sockets_dir = plan.sockets
+    c.CourseSpawner.relay_ports = [plan.hub_port, plan.progress_port]  # the API, progress
     c.Spawner.http_timeout = 120
     from .spawner import stop_leftovers_hook  # imports JupyterHub: the hub's side only
 

@@ -5,10 +5,12 @@ from __future__ import annotations
 import contextlib
 import os
 import secrets
+import shutil
 import signal
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 import urllib.error
 import urllib.request
@@ -18,19 +20,22 @@ import yaml
 
 from ..core.errors import ConfigError, CourseError
 from ..core.ports import free_port
+from ..core.procfs import start_time
 from ..core.signalling import send
 from .accounts import ensure_accounts, refuse_system_accounts
 from .environment import build_environment, check_world_executable
 from .plan import PLAN_ENV, HubPlan, write_plan
 from .proxy import install_proxy, missing_npm, proxy_command
 from .settings import HUB_YAML, HubSettings, load_hub_settings
-from .tied import tie_to_parent
+from .tied import tied_preexec
+from .wall import wall_problem
 
-__all__ = ["run_hub"]
+__all__ = ["forget_stale_proxy_pid", "run_hub"]
 
 CONFIG_FILE = Path(__file__).resolve().parent / "jupyterhub_config.py"
 READY_TIMEOUT_S = 60.0
 STOP_TIMEOUT_S = 90.0  # the hub stops every learner's server first
+NO_WALL_ENV = "COURSE_HUB_NO_WALL"  # set: no network of their own for learners (bench, tests)
 
 
 def _key_line(path: Path, key: str) -> int | None:
@@ -72,12 +77,38 @@ def _check_before_start(settings: HubSettings, source: Path) -> None:
     check_world_executable(Path(settings.python))
 
 
+def _wall_sockets(port: int) -> tuple[bool, str]:
+    """Say in one line whether learners get a network of their own; return (on, folder).
+
+    With the wall, each learner's server socket lives in `<folder>/<name>/` (0700, theirs):
+    the folder itself lets anyone through (0711) but lists nothing.
+    """
+    problem = "turned off by COURSE_HUB_NO_WALL" if os.environ.get(NO_WALL_ENV) else wall_problem()
+    if problem is not None:
+        print(
+            f"The domain wall is off: this host gives no learner a network of their own "
+            f"({problem}); another account that sets a learner's ROS_DOMAIN_ID reaches their "
+            "nodes, and their lab's ports answer every account (README: A class on JupyterHub)."
+        )
+        return False, ""
+    run = Path("/run") if Path("/run").is_dir() else Path(tempfile.gettempdir())
+    folder = run / f"ros2-params-course-hub-{port}"  # one hub on a port at a time
+    shutil.rmtree(folder, ignore_errors=True)  # the last start's, with its learners' folders
+    folder.mkdir(mode=0o711)
+    folder.chmod(0o711)
+    print("The domain wall is on: each learner's lab runs in a network of its own.")
+    return True, str(folder)
+
+
 def _plan(settings: HubSettings, state: Path, course: Path, proxy: Path) -> HubPlan:
     admin_password = None
     if settings.authenticator == "shared-password":
         admin_password = secrets.token_urlsafe(32)
         (state / "admin-password.txt").write_text(admin_password + "\n", encoding="utf-8")
+    wall, sockets = _wall_sockets(settings.port)
     return HubPlan(
+        wall=wall,
+        sockets=sockets,
         ip=settings.ip,
         port=settings.port,
         hub_port=free_port(),
@@ -93,6 +124,42 @@ def _plan(settings: HubSettings, state: Path, course: Path, proxy: Path) -> HubP
         shared_password=settings.shared_password,
         admin_password=admin_password,
     )
+
+
+def _boot_time() -> float:
+    for line in Path("/proc/stat").read_text().splitlines():
+        if line.startswith("btime "):
+            return float(line.split()[1])
+    return 0.0
+
+
+def forget_stale_proxy_pid(pid_file: Path, proxy: Path) -> str | None:
+    """Remove `pid_file` unless it names the hub's own proxy, still running; return one line
+    saying what was left alone, or None.
+
+    JupyterHub stops (SIGTERM, then SIGKILL, as root) whatever process the proxy's pid file
+    names when it starts. After a hub was killed, that pid may be anyone's by now: only a
+    process that runs this proxy and started before the file was written is the old proxy.
+    """
+    try:
+        text = pid_file.read_text().strip()
+        written = pid_file.stat().st_mtime
+    except OSError:
+        return None
+    pid = int(text) if text.isdigit() else 0
+    started = start_time(pid) if pid > 0 else None
+    if started is not None:
+        try:
+            command = Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode()
+        except OSError:
+            command = ""
+        began = _boot_time() + int(started) / os.sysconf("SC_CLK_TCK")
+        if str(proxy) in command and began <= written + 1.0:
+            return None  # the killed hub's own proxy: JupyterHub stops it
+    pid_file.unlink(missing_ok=True)
+    if started is None:
+        return None
+    return f"{pid_file} named pid {pid}, which is not the hub's proxy any more: it is left alone."
 
 
 def _wait_ready(hub: subprocess.Popen[bytes], url: str) -> None:
@@ -140,12 +207,16 @@ def run_hub(config: Path = HUB_YAML) -> int:
             print(f"Created the Unix account {account.name!r}.")
     if passwords:
         print(f"Their initial passwords are in {passwords} (root only): hand them out.")
-    plan = write_plan(_plan(settings, state, course, proxy), state / "plan.json")
+    note = forget_stale_proxy_pid(state / "proxy.pid", proxy)
+    if note:
+        print(note)
+    plan_data = _plan(settings, state, course, proxy)
+    plan = write_plan(plan_data, state / "plan.json")
     env = {**os.environ, PLAN_ENV: str(plan)}
     signal.signal(signal.SIGTERM, signal.default_int_handler)
     hub = subprocess.Popen(
         [sys.executable, "-m", "jupyterhub", "-f", str(CONFIG_FILE)],
-        cwd=state, env=env, preexec_fn=tie_to_parent,
+        cwd=state, env=env, preexec_fn=tied_preexec(),
     )  # fmt: skip
     host = "127.0.0.1" if settings.ip in ("0.0.0.0", "::") else settings.ip
     url = f"http://{host}:{settings.port}/"
@@ -159,3 +230,5 @@ def run_hub(config: Path = HUB_YAML) -> int:
         return _stop(hub)
     finally:
         _stop(hub)
+        if plan_data.sockets:  # every server has stopped: their socket folders go too
+            shutil.rmtree(plan_data.sockets, ignore_errors=True)

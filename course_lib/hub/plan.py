@@ -31,6 +31,8 @@ class HubPlan:
     idle_minutes: int
     shared_password: str | None = None
     admin_password: str | None = None
+    wall: bool = False  # each learner's server in a network of its own (course_lib.hub.wall)
+    sockets: str = ""  # with the wall: the folder of the learners' server socket folders
 
     @property
     def learner_python(self) -> str:

@@ -3,17 +3,58 @@
 from __future__ import annotations
 
 import asyncio
+import os
 import pwd
 import signal
 from collections.abc import Callable
-from typing import Any
+from pathlib import Path
+from typing import Any, ClassVar
+from urllib.parse import quote
 
 from jupyterhub.spawner import LocalProcessSpawner, set_user_setuid
+from traitlets import Bool, Int, List, Unicode
 
+from ..core.errors import DomainUnavailableError
 from ..core.signalling import send
+from ..processes.domain import DOMAIN_ENV, candidate_domains, domain_in_use
 from .tied import tie_to_parent
+from .wall import Relay, enter_own_network
 
-__all__ = ["CourseSpawner", "leftover_stop_argv", "run_bounded"]
+__all__ = ["CourseSpawner", "HubDomains", "leftover_stop_argv", "run_bounded"]
+
+# jupyter_server refuses --sock beside any port but its default one; in a network of its own
+# the server binds no port at all, so the hub names that one (JUPYTERHUB_SERVICE_URL).
+_SERVER_DEFAULT_PORT = 8888
+
+
+class HubDomains:
+    """The ROS domain ids the hub has given to running servers: one per learner, held from
+    the server's start to its stop, whatever other accounts bind (no port lease)."""
+
+    def __init__(self) -> None:
+        self._held: dict[str, int] = {}
+
+    def take(self, name: str, *, walled: bool) -> int:
+        """Return `name`'s domain id, the one they hold already or a new one."""
+        if name in self._held:
+            return self._held[name]
+        taken = set(self._held.values())
+        for domain_id in candidate_domains(1):
+            # in a network of its own a lab meets no other DDS socket; without one, a domain
+            # some process of the host already uses is passed over
+            if domain_id not in taken and (walled or not domain_in_use(domain_id)):
+                self._held[name] = domain_id
+                return domain_id
+        raise DomainUnavailableError(
+            "Every ROS domain id on this host is in use.", hint="stop a server, then retry."
+        )
+
+    def give_back(self, name: str) -> None:
+        self._held.pop(name, None)
+
+    def held(self) -> dict[str, int]:
+        return dict(self._held)
+
 
 STOP_TIMEOUT_S = 60.0
 OUTPUT_LIMIT = 16384  # bytes of its output the hub keeps for its log
@@ -24,16 +65,86 @@ class CourseSpawner(LocalProcessSpawner):
 
     The server gets SIGTERM if the hub dies, and once it has stopped, the learner's leftover
     course processes (if any) are stopped the way `make stop` does, run as the learner.
+
+    The hub gives each learner their ROS domain id for the server's life (`HubDomains`). With
+    `wall` (the hub's default where the kernel allows it), the server starts in a network of
+    its own (course_lib.hub.wall): it listens on a Unix socket in `sockets_dir/<name>/`, a
+    folder only the learner (and root) can enter, and the hub relays `relay_ports` (its API,
+    the progress service) into that network.
     """
+
+    wall = Bool(False, help="each server in a network namespace of its own").tag(config=True)
+    sockets_dir = Unicode("", help="where each learner's server socket folder is").tag(config=True)
+    relay_ports = List(Int(), help="host ports on 127.0.0.1 relayed into each lab").tag(
+        config=True
+    )
+
+    domains: ClassVar[HubDomains] = HubDomains()
+    _relay: Relay | None = None
+    _network: int | None = None  # the inode of the lab's network namespace
+    domain_id: int | None = None
 
     def make_preexec_fn(self, name: str) -> Callable[[], None]:
         become_user = set_user_setuid(name)
+        hub = os.getpid()  # the parent, as it is now: a child that finds another is orphaned
+        walled = self.wall
 
         def preexec() -> None:
+            if walled:
+                enter_own_network()  # as root, before the learner's uid
             become_user()
-            tie_to_parent()  # after setuid: changing the user clears the parent-death signal
+            tie_to_parent(parent=hub)  # after setuid: that clears the parent-death signal
 
         return preexec
+
+    def socket_path(self) -> Path:
+        """Return the Unix socket the learner's server listens on (with the wall)."""
+        return Path(self.sockets_dir) / self.user.name / "server.sock"
+
+    def _prepare_socket_folder(self) -> Path:
+        account = pwd.getpwnam(self.user.name)
+        folder = self.socket_path().parent
+        folder.mkdir(mode=0o700, exist_ok=True)
+        os.chown(folder, account.pw_uid, account.pw_gid)
+        folder.chmod(0o700)
+        self.socket_path().unlink(missing_ok=True)  # a killed server's
+        return folder
+
+    def get_args(self) -> list[str]:
+        args = super().get_args()
+        if self.wall:
+            args.append(f"--ServerApp.sock={self.socket_path()}")
+        return args
+
+    def get_env(self) -> dict[str, str]:
+        env = super().get_env()
+        if self.domain_id is not None:
+            env[DOMAIN_ENV] = str(self.domain_id)  # the lab takes it as given: no lease
+        return env
+
+    async def start(self) -> Any:
+        self.domain_id = self.domains.take(self.user.name, walled=self.wall)
+        if not self.wall:
+            return await super().start()
+        self._prepare_socket_folder()
+        self.port = _SERVER_DEFAULT_PORT
+        await super().start()
+        self._network = os.stat(f"/proc/{self.pid}/ns/net").st_ino
+        self._relay = Relay(self.pid, list(self.relay_ports), self.log.warning)
+        await self._relay.start()
+        url = f"http+unix://{quote(str(self.socket_path()), safe='')}"
+        # JupyterHub keeps only ip and port of a server; its address on a socket is this
+        self.server.connect_url = url
+        return url
+
+    async def stop(self, now: bool = False) -> None:
+        try:
+            await super().stop(now=now)
+        finally:
+            if self._relay is not None:
+                self._relay.close()
+                self._relay = None
+            self.domains.give_back(self.user.name)
 
     async def stop_leftovers(self) -> None:
         """Run `python -m course_lib stop` as the learner; log what it stopped."""
@@ -46,6 +157,29 @@ class CourseSpawner(LocalProcessSpawner):
             self.log.warning("Stopping %s's leftover processes took too long", self.user.name)
             return
         self.log.info("After %s's server stopped: %s", self.user.name, text or "nothing left")
+        if self._network is not None:  # the lab's network ends with it, as a pod would
+            swept = sweep_network(self._network, pwd.getpwnam(self.user.name).pw_uid)
+            if swept:
+                self.log.info("Stopped what was left in %s's lab: %s", self.user.name, swept)
+            self._network = None
+
+
+def sweep_network(network: int, uid: int) -> list[int]:
+    """SIGKILL every process of `uid` still in the network namespace whose inode is
+    `network` (a learner's own programs, after their server stopped); return their pids.
+    Both are checked for each process before the signal: nothing else is ever signalled."""
+    swept = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            if entry.stat().st_uid != uid or os.stat(entry / "ns" / "net").st_ino != network:
+                continue
+            send(int(entry.name), signal.SIGKILL, reason="its lab's server stopped")
+            swept.append(int(entry.name))
+        except (OSError, ProcessLookupError):
+            continue
+    return swept
 
 
 def leftover_stop_argv(python: str) -> list[str]:

@@ -11,9 +11,10 @@ from pathlib import Path
 from typing import Any
 
 from ..core.paths import NOTEBOOKS_DIR, PACKAGE_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
+from ..core.procfs import start_time
 from ..processes.children import ChildProcess, spawn
 from ..processes.domain import lease_domain
-from ..processes.lab_markers import lab_clone_marker, lab_marker
+from ..processes.lab_markers import lab_clone_marker, lab_marker, lab_start_marker
 from ..ros2 import start_daemon
 from ..session.session import session_env
 from .leftovers import clean_up_killed_labs, workspaces_dir
@@ -114,6 +115,8 @@ def run_lab(
     if note:
         print(note)
     lease = lease_domain()
+    started = lab_start_marker(os.getpid())
+    started.write_text(start_time(os.getpid()) or "")  # first: it vouches for the others
     marker = lab_marker(os.getpid())
     marker.write_text(str(lease.domain_id))
     clone = lab_clone_marker(os.getpid())
@@ -145,6 +148,7 @@ def run_lab(
         machine.stop()
         marker.unlink(missing_ok=True)
         clone.unlink(missing_ok=True)
+        started.unlink(missing_ok=True)
         shutil.rmtree(workspaces, ignore_errors=True)
         lease.release()
     return code or 0

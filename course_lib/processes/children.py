@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
+import hashlib
 import os
 import queue
 import re
@@ -46,6 +47,9 @@ __all__ = [
 OWNER_ENV = "COURSE_OWNER"
 OWNER_NS_ENV = "COURSE_OWNER_NS"  # the PID namespace in which COURSE_OWNER's pid is meant
 NAME_ENV = "COURSE_PROCESS"
+# What `spawn` ran, as a digest of its command line: a process that merely inherited the tags
+# (a learner's program started from a lab terminal) runs another command.
+SPAWNED_ENV = "COURSE_SPAWNED"
 _PR_SET_PDEATHSIG = 1
 _MAX_LINES = 5000
 _REAP_WAIT_S = 10.0  # after a child closed its output, at most, until it exits
@@ -340,6 +344,7 @@ def spawn(
     child_env[OWNER_ENV] = owner_tag()
     child_env[OWNER_NS_ENV] = procfs.pid_namespace()
     child_env[NAME_ENV] = name
+    child_env[SPAWNED_ENV] = command_tag(argv)
     child_env.setdefault("PYTHONUNBUFFERED", "1")
     pipe = subprocess.PIPE if capture else None
 
@@ -366,10 +371,64 @@ def spawn(
     return ChildProcess(popen, name, argv, respawn=lambda: _spawner.run(start))
 
 
-def _orphans() -> dict[int, str]:
-    """Return this user's processes whose owner tag names a process that is gone.
+def _command_digest(words: Sequence[str]) -> str:
+    # the program by its name: a script's interpreter shows its path, a PATH lookup none
+    named = [os.path.basename(words[0]), *words[1:]]
+    return hashlib.sha1("\0".join(named).encode(errors="replace")).hexdigest()[:16]
 
-    Each with its start time, so that a pid reused since is never taken for it.
+
+def command_tag(argv: Sequence[str]) -> str:
+    """Return the SPAWNED_ENV value for a process started with `argv`."""
+    return f"{_command_digest(argv)}:{len(argv)}"
+
+
+def runs_as_spawned(cmdline: Sequence[str], tag: str) -> bool:
+    """Return True if `cmdline` (from /proc) is the command that `tag` records.
+
+    A script run through its `#!` interpreter shows the interpreter first: the recorded
+    words are the command line's last ones.
+    """
+    digest, _, count = tag.partition(":")
+    if not count.isdigit() or not 0 < int(count) <= len(cmdline):
+        return False
+    return _command_digest(cmdline[len(cmdline) - int(count) :]) == digest
+
+
+def _socket_inodes(pid: int) -> set[str]:
+    return {t[8:-1] for t in procfs.fd_targets(pid) if t.startswith("socket:[")}
+
+
+def holds_dds_socket(pid: int, domain: str) -> bool:
+    """Return True if process `pid` has a UDP socket in `domain`'s DDS ports: a ROS process
+    (a participant) of that domain, whoever started it."""
+    from .domain import port_block  # domain.py needs only the standard library
+
+    if not domain.strip().isdigit():
+        return False
+    block, inodes = port_block(int(domain)), _socket_inodes(pid)
+    for table in ("udp", "udp6"):
+        with contextlib.suppress(OSError):
+            for line in (procfs.PROC / str(pid) / "net" / table).read_text().splitlines()[1:]:
+                fields = line.split()
+                if int(fields[1].rsplit(":", 1)[1], 16) in block and fields[9] in inodes:
+                    return True
+    return False
+
+
+def started_by_course(pid: int, env: Mapping[str, str], cmdline: Sequence[str]) -> bool:
+    """Return True if process `pid` is one the course started, or a ROS process of the
+    domain it runs in; False for a program that only inherited the course's environment
+    (an editor, a script the learner started from a lab terminal)."""
+    return runs_as_spawned(cmdline, env.get(SPAWNED_ENV, "")) or holds_dds_socket(
+        pid, env.get("ROS_DOMAIN_ID", "")
+    )
+
+
+def _orphans() -> dict[int, str]:
+    """Return this user's course processes whose owner tag names a process that is gone.
+
+    Each with its start time, so that a pid reused since is never taken for it. A program
+    that only inherited the tag (see `started_by_course`) is the learner's: never one.
     """
     me, uid = os.getpid(), os.getuid()
     found = {}
@@ -378,7 +437,12 @@ def _orphans() -> dict[int, str]:
             started = procfs.start_time(pid)
             env = procfs.environ(pid)
             tag = env.get(OWNER_ENV)
-            if started and tag and not owner_alive(tag, env.get(OWNER_NS_ENV, "")):
+            if (
+                started
+                and tag
+                and not owner_alive(tag, env.get(OWNER_NS_ENV, ""))
+                and started_by_course(pid, env, procfs.cmdline(pid) or ())
+            ):
                 found[pid] = started
     return found
 

@@ -11,7 +11,14 @@ from pathlib import Path
 from ..core import procfs
 from ..core.paths import runtime_dir
 
-__all__ = ["lab_clone_marker", "lab_marker", "owning_lab", "running_lab_domain"]
+__all__ = [
+    "lab_clone_marker",
+    "lab_marker",
+    "lab_start_marker",
+    "owning_lab",
+    "recorded_start",
+    "running_lab_domain",
+]
 
 
 def lab_marker(pid: int) -> Path:
@@ -26,6 +33,20 @@ def lab_clone_marker(pid: int) -> Path:
     cleaned up by any clone, but spoken of only by its own.
     """
     return runtime_dir() / f"lab-{pid}.clone"
+
+
+def lab_start_marker(pid: int) -> Path:
+    """Return the file holding lab `pid`'s start time: a later process that reuses the pid
+    (even another course process of the user) is never taken for the lab, nor signalled."""
+    return runtime_dir() / f"lab-{pid}.start"
+
+
+def recorded_start(pid: int) -> str | None:
+    """Return the start time lab `pid` recorded, or None (a lab of an older course)."""
+    try:
+        return lab_start_marker(pid).read_text().strip() or None
+    except OSError:
+        return None
 
 
 def owning_lab(pid: int) -> int | None:

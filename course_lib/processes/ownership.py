@@ -4,14 +4,17 @@ A process of this user is the course's when
 
 - `processes.spawn` started it: its ``COURSE_OWNER`` names its parent (pid and start time).
   Kernels' nodes, simulations and viewers, a lab's JupyterLab and daemon, launch's nodes;
-- it is a leftover: its ``COURSE_OWNER`` names a process that is gone (the same rule as
-  `processes.reap_orphans`);
+- it is a leftover: its ``COURSE_OWNER`` names a process that is gone, and it runs the
+  command the course started it with, or it is a ROS process (a DDS socket) of its domain
+  (the same rule as `processes.reap_orphans`);
 - it serves a Unix socket in the runtime folder (the ``ros2`` daemons, a lab's service);
 - it is a running `make lab`, found by its ``lab-<pid>.*`` marker in the runtime folder.
 
 A process that merely inherited the environment (JupyterLab's kernels and terminals, the
 learner's shells and editors in them) names a live owner that is not its parent: it is never
-the course's, even with a copied ``COURSE_OWNER``.
+the course's, even with a copied ``COURSE_OWNER``. Once that owner is gone (the lab stopped),
+such a program is still the learner's unless it is a ROS process of the lab's domain:
+`make stop` leaves it running and names it (`own_programs`).
 """
 
 from __future__ import annotations
@@ -22,7 +25,15 @@ from pathlib import Path
 
 from ..core import procfs
 from ..core.paths import runtime_dir
-from .children import NAME_ENV, OWNER_ENV, OWNER_NS_ENV, owner_alive, tag_names
+from .children import (
+    NAME_ENV,
+    OWNER_ENV,
+    OWNER_NS_ENV,
+    owner_alive,
+    started_by_course,
+    tag_names,
+)
+from .lab_markers import recorded_start
 
 __all__ = [
     "LAB_ENV",
@@ -32,6 +43,7 @@ __all__ = [
     "current_lab",
     "is_course_lab",
     "lab_markers",
+    "own_programs",
     "protected_pids",
     "read_process",
 ]
@@ -159,9 +171,13 @@ def lab_markers() -> dict[int, list[Path]]:
 
 
 def is_course_lab(pid: int, table: dict[int, ProcessInfo] | None = None) -> bool:
-    """Return True if `pid` runs a course lab of this user (a reused pid is none)."""
+    """Return True if `pid` runs a course lab of this user (a reused pid is none): its owner,
+    its command and, where the lab recorded it, its start time."""
     info = read_process(pid) if table is None else table.get(pid)
-    return info is not None and info.uid == os.getuid() and "course_lib" in " ".join(info.argv)
+    if info is None or info.uid != os.getuid() or "course_lib" not in " ".join(info.argv):
+        return False
+    recorded = recorded_start(pid)
+    return recorded is None or recorded == info.start
 
 
 def _lab_pids(table: dict[int, ProcessInfo]) -> set[int]:
@@ -172,7 +188,7 @@ def _reason(info: ProcessInfo, table: dict[int, ProcessInfo], labs: set[int]) ->
     owner, namespace = info.owner, info.owner_namespace
     if owner:
         if not owner_alive(owner, namespace):
-            return "leftover"
+            return "leftover" if started_by_course(info.pid, info.env, info.argv) else ""
         parent = table.get(info.ppid)
         if parent is not None and tag_names(owner, parent.pid, parent.start, namespace):
             return "child"
@@ -203,4 +219,20 @@ def course_processes() -> list[CourseProcess]:
         reason = _reason(info, table, labs) or ("socket" if info.pid in sockets else "")
         if reason:
             found.append(CourseProcess(info, _name(info, reason), reason))
+    return sorted(found, key=lambda p: p.pid)
+
+
+def own_programs() -> list[CourseProcess]:
+    """Return the learner's own programs that outlived their lab: processes of this user that
+    inherited a lab's environment (its owner tag names a process that is gone) but are
+    neither started by the course nor ROS processes of its domain. `make stop` keeps them."""
+    table = _user_processes()
+    keep = protected_pids(table)
+    found = []
+    for info in table.values():
+        owner = info.owner
+        if info.pid in keep or not owner or owner_alive(owner, info.owner_namespace):
+            continue
+        if not started_by_course(info.pid, info.env, info.argv):
+            found.append(CourseProcess(info, _name(info, ""), "yours"))
     return sorted(found, key=lambda p: p.pid)

@@ -1,5 +1,8 @@
 """`make stop`: stop the course's processes like Ctrl-C, then harder, and say what stopped.
 
+It stops what the course started and the ROS processes of a stopped lab's domain; a learner's
+own programs started from a lab terminal keep running and are listed.
+
 Which processes count is ownership.py's rule. Each one gets SIGINT (only those whose parent is
 not itself being stopped: a lab stops its JupyterLab, a launch its nodes), then whatever still
 runs after a grace time gets SIGTERM, then SIGKILL. A process started in a process group of its
@@ -14,7 +17,7 @@ from dataclasses import dataclass, field
 
 from ..core.signalling import send
 from ..core.waiting import wait_until
-from .ownership import CourseProcess, course_processes, current_lab, read_process
+from .ownership import CourseProcess, course_processes, current_lab, own_programs, read_process
 
 __all__ = ["StopReport", "Stopped", "stop_course"]
 
@@ -39,6 +42,7 @@ class StopReport:
     stopped: list[Stopped] = field(default_factory=list)
     left: list[CourseProcess] = field(default_factory=list)
     kept_lab: int | None = None
+    kept_own: list[CourseProcess] = field(default_factory=list)
 
     def render(self) -> str:
         """Return the text `make stop` prints: one line per process."""
@@ -51,6 +55,12 @@ class StopReport:
         else:
             lines.append("No course process runs.")
         lines += [f"Could not stop {p.name} (pid {p.pid})." for p in self.left]
+        if self.kept_own:
+            lines.append(
+                f"Left running {len(self.kept_own)} program(s) of yours, started from a lab "
+                "(not by the course, no ROS process):"
+            )
+            lines += [f"  {' '.join(p.info.argv)[:120]} (pid {p.pid})" for p in self.kept_own]
         if self.kept_lab is not None:
             lines.append(
                 f"This terminal belongs to the lab (pid {self.kept_lab}): its JupyterLab and "
@@ -109,4 +119,5 @@ def stop_course(*, grace_s: float = GRACE_S, rounds: int = 3) -> StopReport:
         seen |= {p.pid for p in found}
         _stop_batch(found, grace_s, report)
         grace_s = TERM_S
+    report.kept_own = own_programs()
     return report

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import os
 
-from ..processes.children import NAME_ENV, OWNER_ENV, OWNER_NS_ENV
+from ..processes.children import NAME_ENV, OWNER_ENV, OWNER_NS_ENV, SPAWNED_ENV
 from ..processes.domain import DOMAIN_ENV
 from ..session.session import SESSION_DOMAIN_ENV
 
@@ -29,7 +29,8 @@ def independent_env(**extra: str) -> dict[str, str]:
     Like a fresh `make lab` or kernel: this process's domain, owner tag and lab are left out
     (the child leases a domain itself), and the test settings are in.
     """
-    own = (DOMAIN_ENV, SESSION_DOMAIN_ENV, OWNER_ENV, OWNER_NS_ENV, NAME_ENV, "COURSE_LAB")
+    own = (DOMAIN_ENV, SESSION_DOMAIN_ENV, OWNER_ENV, OWNER_NS_ENV, NAME_ENV, SPAWNED_ENV)
+    own += ("COURSE_LAB",)
     env = {k: v for k, v in os.environ.items() if k not in own}
     return {**env, **TEST_ENV, **extra}
 

@@ -85,6 +85,9 @@ def main() -> None:
     pids["shell"] = terminal.shell_pid
     # the learner's own programs, which inherit the lab's environment (and its owner tag)
     pids["editor"] = int(terminal.run("sleep 600 & echo bg-pid=$!", r"bg-pid=(\d+)")[1])
+    # a program meant to outlive the lab (nohup: the terminal's hang-up spares it)
+    logger = terminal.run("nohup sleep 700 >/dev/null 2>&1 & echo bg-pid=$!", r"bg-pid=(\d+)")
+    pids["logger"] = int(logger[1])
     started = terminal.run(
         f"{PY} {folder / 'learner.py'} &", r"node-pid=(\d+) stubborn-pid=(\d+)", timeout=90
     )
@@ -110,7 +113,8 @@ def main() -> None:
     lab.process.wait(10.0)
     facts["alive_after_outside"] = {name: pid_alive(pid) for name, pid in pids.items()}
     others = [int(e) for e in os.listdir("/proc") if e.isdigit() and int(e) != os.getpid()]
-    facts["left_running"] = describe([p for p in others if pid_alive(p)])
+    left = [p for p in others if pid_alive(p) and p != pids["logger"]]
+    facts["left_running"] = describe(left)
     facts["pids"] = pids
     print(json.dumps(facts), flush=True)
 

@@ -59,6 +59,7 @@ def test_in_a_lab_terminal_stop_keeps_the_lab_and_the_learners_programs(facts: d
         "node": False,
         "stubborn": False,
         "script": True,
+        "logger": True,
     }, facts["inside_output"]
     assert facts["shell_answers"]
     assert facts["inside_exit"] == 0
@@ -73,9 +74,17 @@ def test_stop_says_what_it_stopped_and_that_the_lab_stays(facts: dict) -> None:
     assert f"pid {pids['shell']}" not in said and f"pid {pids['editor']}" not in said
 
 
-def test_outside_a_lab_stop_ends_the_lab_and_leaves_nothing(facts: dict) -> None:
-    assert not any(facts["alive_after_outside"].values()), facts["alive_after_outside"]
+def test_outside_a_lab_stop_ends_the_lab_and_leaves_only_the_learners_own_program(
+    facts: dict,
+) -> None:
+    """The lab, its nodes and the learner's ROS script stop; a program the learner started
+    from a lab terminal to outlive it (it inherited the lab's marker) runs on, and is named."""
+    alive = facts["alive_after_outside"]
+    assert alive.pop("logger"), f"make stop killed the learner's own program: {facts}"
+    assert not any(alive.values()), alive
     assert facts["left_running"] == ""
     said = facts["outside_output"]
     assert f"  lab (pid {facts['pids']['lab']})" in said, said
+    assert "Left running 1 program(s) of yours" in said, said
+    assert f"sleep 700 (pid {facts['pids']['logger']})" in said, said
     assert facts["outside_exit"] == 0

@@ -25,7 +25,6 @@ import requests
 from course_lib.core.ports import free_port
 from course_lib.hub.progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
 from course_lib.hub.proxy import install_proxy
-from course_lib.hub.tied import tied_command
 from course_lib.processes.children import set_parent_death_signal
 
 LEARNERS = ("alice", "bob", "carol")
@@ -75,7 +74,7 @@ class ClassHub:
 
     def _config(self) -> str:
         spec = service_spec(sys.executable, self.db, self.service_port)
-        spec["command"] = tied_command(*spec["command"])  # as the class hub: dies with it
+        service_command = spec["command"]
         tests = {"name": "course-tests", "api_token": self.token}
         tests_role = {
             "name": "course-tests",
@@ -93,7 +92,6 @@ class ClassHub:
             "JupyterHub.services": [spec, tests],
             "JupyterHub.load_roles": [*roles(), tests_role],
             "ConfigurableHTTPProxy.api_url": f"http://127.0.0.1:{self.proxy_api_port}",
-            "ConfigurableHTTPProxy.command": tied_command(self.proxy),
             "ConfigurableHTTPProxy.pid_file": str(self.root / "state" / "proxy.pid"),
             "JupyterHub.authenticator_class": "shared-password",
             "SharedPasswordAuthenticator.user_password": PASSWORD,
@@ -109,6 +107,13 @@ class ClassHub:
             },
         }
         lines = [f"c.{key} = {value!r}" for key, value in settings.items()]
+        # tied to the hub, as in the class hub: the command names its parent, the hub, so it
+        # is written in the hub's own process, where this file runs
+        lines += [
+            "from course_lib.hub.tied import tied_command",
+            f"c.ConfigurableHTTPProxy.command = tied_command({self.proxy!r})",
+            f"c.JupyterHub.services[0]['command'] = tied_command(*{service_command!r})",
+        ]
         return "c = get_config()  # noqa: F821\n" + "\n".join(lines) + "\n"
 
     # --- the hub process ----------------------------------------------------------------------

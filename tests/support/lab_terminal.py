@@ -13,6 +13,7 @@ import time
 import urllib.request
 from typing import Any
 
+from tornado.httpclient import HTTPRequest
 from tornado.websocket import websocket_connect
 
 __all__ = ["RestTerminal", "rest"]
@@ -32,8 +33,10 @@ def rest(base_url: str, token: str, method: str, path: str, body: Any = None) ->
     return json.loads(body) if body else None
 
 
-async def _connect(url: str) -> Any:
-    return await websocket_connect(url)
+async def _connect(url: str, token: str) -> Any:
+    # the token in a header too: a hub's server takes none from the URL (JupyterHub >= 5)
+    request = HTTPRequest(url, headers={"Authorization": f"token {token}"})
+    return await websocket_connect(request)
 
 
 async def _write(ws: Any, message: str) -> None:
@@ -53,7 +56,7 @@ class RestTerminal:
         self.output = ""
         self._loop = asyncio.new_event_loop()
         url = f"{base_url.replace('http', 'ws', 1)}/terminals/websocket/{self.name}"
-        self._ws = self._loop.run_until_complete(_connect(f"{url}?token={token}"))
+        self._ws = self._loop.run_until_complete(_connect(f"{url}?token={token}", token))
         self.shell_pid = int(self.run("echo shell-pid=$$", r"shell-pid=(\d+)")[1])
 
     def run(self, command: str, expect: str, timeout: float = 60.0) -> re.Match[str]:
