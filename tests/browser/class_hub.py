@@ -115,10 +115,13 @@ class ClassHub:
         )  # fmt: skip
         self.url = f"http://127.0.0.1:{self.port}"
         try:
-            self.process.wait_for_line("The class hub is up", timeout=BUILD_TIMEOUT_S)
+            up = self.process.wait_for_line("The class hub is up", timeout=BUILD_TIMEOUT_S)
         except Exception as err:
             self.stop()
             raise AssertionError(f"the hub did not start:\n{self.process.text()[-4000:]}") from err
+        if up is None:  # it ended (or never said so)
+            self.stop()
+            raise AssertionError(f"the hub did not start:\n{self.process.text()[-4000:]}")
         listed = (self.state / "passwords.txt").read_text(encoding="utf-8").splitlines()
         self.passwords = dict(line.split(" ", 1) for line in listed)
 

@@ -147,7 +147,10 @@ def victim_lab(class_hub: ClassHub) -> Iterator[RestTerminal]:
             r"nodes-\d+",
             timeout=90,
         )
-        terminal.run("cat ~/nodes.txt ~/view.log; echo listed", r"/turtlesim[\s\S]*listed")
+        terminal.run(
+            "cat ~/nodes.txt ~/view.log; echo listed; cat ~/turtlesim.log",
+            r"/turtlesim[\s\S]*listed",
+        )
         yield terminal
     finally:
         terminal.close()

@@ -42,7 +42,9 @@ def test_a_warm_client_does_not_wait(session: Session) -> None:
     client._born -= 2 * FASTDDS_DEFAULT_ANNOUNCEMENT_S  # as old as a warm daemon's
     started = time.monotonic()
     client.settle()
-    assert time.monotonic() - started < 0.05
+    # a young client waits for the announcement period (seconds); a warm one only asks the
+    # graph once (milliseconds; bounded loosely, so a busy machine never fails it)
+    assert time.monotonic() - started < 0.5
 
 
 def _names(client: RosClient) -> set[str]:
