@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path[:0] = [str(HERE), str(HERE.parent / "browser")]
+sys.path[:0] = [str(HERE), str(HERE.parent / "support"), str(HERE.parent / "browser")]
 
 from jupyter_kernels import describe, pid_alive  # noqa: E402
 from lab_server import LabServer  # noqa: E402

@@ -29,11 +29,10 @@ def service_list(*, include_hidden: bool = False) -> list[tuple[str, list[str]]]
 
 def service_type(service: str) -> str:
     """Return a service's type; raise TopicNotFoundError if no node offers it."""
-    from ..node.graph import lookup, services
+    from ..node.graph import types_of
     from .nodes_and_params import client
 
-    c = client()
-    types = lookup(c, lambda: dict(services(c, include_hidden=True)).get(service))
+    types = types_of(client(), service, kind="service")
     if not types:
         raise TopicNotFoundError(
             f"No service {service} in the graph", hint="check `ros2 service list`"
@@ -70,12 +69,12 @@ def call_service(
 
 def topic_info(topic: str) -> dict[str, Any]:
     """Return a topic's types and its publisher and subscription counts."""
-    from ..node.graph import lookup
+    from ..node.graph import types_of
     from .nodes_and_params import client
 
     c = client()
     node = c.node
-    types = lookup(c, lambda: dict(node.get_topic_names_and_types()).get(topic))
+    types = types_of(c, topic)
     if types is None:
         raise TopicNotFoundError(f"No topic {topic} in the graph", hint="check `ros2 topic list`")
     return {

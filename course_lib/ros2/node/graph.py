@@ -7,7 +7,7 @@ from typing import Any
 from ...core.waiting import wait_until
 from .client import YOUNG_CLIENT_S
 
-__all__ = ["COURSE_CLIENTS", "lookup", "own_prefix", "services"]
+__all__ = ["COURSE_CLIENTS", "lookup", "own_prefix", "services", "topics", "types_of"]
 
 # The client nodes of the course's kernels and daemons (course_lib.session.session): like ros2cli's
 # own nodes, they offer no services to the learner.
@@ -31,6 +31,20 @@ def services(client: Any, *, include_hidden: bool) -> list[tuple[str, list[str]]
         for name, types in client.node.get_service_names_and_types()
         if not name.startswith(mine) and (include_hidden or not topic_or_service_is_hidden(name))
     ]
+
+
+def topics(client: Any, *, include_hidden: bool) -> list[tuple[str, list[str]]]:
+    """Return (topic, types) pairs in the graph's order, as ros2topic lists them."""
+    return [(t.name, list(t.types)) for t in client.topics(include_hidden=include_hidden)]
+
+
+def types_of(
+    client: Any, name: str, *, kind: str = "topic", include_hidden: bool = True
+) -> list[str] | None:
+    """Return the types of topic (or service, `kind="service"`) `name`, or None if the graph
+    has none of that name; a young client waits for discovery first (`lookup`)."""
+    listing = services if kind == "service" else topics
+    return lookup(client, lambda: dict(listing(client, include_hidden=include_hidden)).get(name))
 
 
 def lookup(client: Any, find: Any) -> Any:

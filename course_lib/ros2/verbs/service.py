@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ..node.graph import lookup, services
+from ..node.graph import services, types_of
 from . import options
 from .context import Context
 
@@ -74,13 +74,10 @@ def _services(args: argparse.Namespace, ctx: Context) -> list[tuple[str, list[st
 
 
 def _types_of(args: argparse.Namespace, ctx: Context) -> list[str] | None:
-    client = ctx.client
-    return lookup(
-        client,
-        lambda: dict(services(client, include_hidden=args.include_hidden_services)).get(
-            args.service_name
-        ),
-    )
+    return types_of(
+        ctx.client, args.service_name, kind="service",
+        include_hidden=args.include_hidden_services,
+    )  # fmt: skip
 
 
 def list_(args: argparse.Namespace, ctx: Context) -> Any:

@@ -9,7 +9,7 @@ from typing import Any
 
 from .. import render
 from ..node.discovery import NAME_WAIT_S, UNKNOWN_NODE
-from ..node.graph import lookup
+from ..node.graph import topics, types_of
 from . import options
 from .context import Context, settled_client
 
@@ -23,7 +23,6 @@ __all__ = [
     "topic_command_arguments",
     "topic_list",
     "topic_list_arguments",
-    "topics",
     "type_",
     "type_arguments",
 ]
@@ -83,21 +82,6 @@ def bw_arguments(parser: Parser) -> None:
     options.direct(parser)
 
 
-def topics(ctx: Context, *, include_hidden: bool) -> list[tuple[str, list[str]]]:
-    """Return (topic, types) pairs in the graph's order."""
-    from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
-
-    return [
-        (name, list(types))
-        for name, types in ctx.client.node.get_topic_names_and_types()
-        if include_hidden or not topic_or_service_is_hidden(name)
-    ]
-
-
-def _types_of(ctx: Context, name: str, *, include_hidden: bool) -> list[str] | None:
-    return lookup(ctx.client, lambda: dict(topics(ctx, include_hidden=include_hidden)).get(name))
-
-
 def _all_named(node: Any, name: str) -> bool:
     infos = [*node.get_publishers_info_by_topic(name), *node.get_subscriptions_info_by_topic(name)]
     return all(info.node_name != UNKNOWN_NODE for info in infos)
@@ -105,7 +89,7 @@ def _all_named(node: Any, name: str) -> bool:
 
 def info(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 topic info <topic> [-v]`."""
-    types = _types_of(ctx, args.topic_name, include_hidden=True)
+    types = types_of(ctx.client, args.topic_name, include_hidden=True)
     if types is None:
         return f"Unknown topic '{args.topic_name}'"
     node, name = ctx.client.node, args.topic_name
@@ -127,7 +111,7 @@ def info(args: argparse.Namespace, ctx: Context) -> Any:
 
 def type_(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 topic type <topic>`: its type(s), or exit 1 silently."""
-    types = _types_of(ctx, args.topic_name, include_hidden=args.include_hidden_topics)
+    types = types_of(ctx.client, args.topic_name, include_hidden=args.include_hidden_topics)
     if types is None:
         return 1
     ctx.console.out("".join(f"{t}\n" for t in types))
@@ -137,7 +121,7 @@ def type_(args: argparse.Namespace, ctx: Context) -> Any:
 def find(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 topic find <type> [-c]`."""
     ctx.client.settle()
-    found = topics(ctx, include_hidden=args.include_hidden_topics)
+    found = topics(ctx.client, include_hidden=args.include_hidden_topics)
     names = [name for name, types in found if args.topic_type in types]
     text = f"{len(names)}\n" if args.count_topics else "".join(f"{n}\n" for n in names)
     ctx.console.out(text)
@@ -162,12 +146,12 @@ def bw_line(sizes: list[int], span_s: float) -> str:
 
 
 def _wait_for_type(ctx: Context, topic: str) -> str | None:
-    types = _types_of(ctx, topic, include_hidden=True)
+    types = types_of(ctx.client, topic, include_hidden=True)
     if types is not None:
         return types[0]
     ctx.console.out(f"WARNING: topic [{topic}] does not appear to be published yet\n")
     while not ctx.console.cancelled.wait(_POLL_S):
-        types = dict(topics(ctx, include_hidden=True)).get(topic)
+        types = dict(topics(ctx.client, include_hidden=True)).get(topic)
         if types:
             return types[0]
     return None

@@ -21,6 +21,8 @@ from course_lib.processes.children import (
     NAME_ENV,
     OWNER_ENV,
     OWNER_NS_ENV,
+    SPAWNED_ENV,
+    command_tag,
     owner_tag,
     reap_orphans,
     spawn,
@@ -85,9 +87,14 @@ def test_a_dead_owners_process_is_a_leftover(started) -> None:
     owner = subprocess.Popen([sys.executable, "-c", "pass"])
     tag = owner_tag(owner.pid)
     owner.wait()
-    leftover = subprocess.Popen(SLEEP, env={**independent_env(), OWNER_ENV: tag})
-    started.append(leftover)
-    assert reasons().get(leftover.pid) == "leftover"
+    # as the course's spawn starts it: its command recorded (a program that only inherited the
+    # owner tag, one the learner started from a lab terminal, is never a leftover)
+    env = {**independent_env(), OWNER_ENV: tag}
+    leftover = subprocess.Popen(SLEEP, env={**env, SPAWNED_ENV: command_tag(SLEEP)})
+    learners = subprocess.Popen(SLEEP, env=env)
+    started += [leftover, learners]
+    found = reasons()
+    assert found.get(leftover.pid) == "leftover" and learners.pid not in found
 
 
 def test_a_socket_in_the_runtime_folder_makes_its_holder_the_courses(started) -> None:
@@ -175,7 +182,7 @@ def test_a_tag_from_another_pid_namespace_is_never_judged_here(started) -> None:
     owner = subprocess.Popen([sys.executable, "-c", "pass"])
     tag = owner_tag(owner.pid)
     owner.wait()
-    env = {**independent_env(), OWNER_ENV: tag}
+    env = {**independent_env(), OWNER_ENV: tag, SPAWNED_ENV: command_tag(SLEEP)}
     elsewhere = subprocess.Popen(SLEEP, env={**env, OWNER_NS_ENV: "1"})
     here = subprocess.Popen(SLEEP, env={**env, OWNER_NS_ENV: pid_namespace()})
     started += [elsewhere, here]

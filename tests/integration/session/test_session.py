@@ -16,7 +16,7 @@ from rclpy.parameter_client import AsyncParameterClient
 from course_lib.core.errors import ExecutableNotFoundError, PackageNotFoundError
 from course_lib.core.paths import ROSJECT_DIR
 from course_lib.core.procfs import pid_alive
-from course_lib.processes.children import OWNER_ENV, reap_orphans
+from course_lib.processes.children import OWNER_ENV, SPAWNED_ENV, command_tag, reap_orphans
 from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
@@ -182,9 +182,10 @@ def test_leftovers_of_a_dead_owner_are_reaped() -> None:
         check=True,
     )
     tag = f"{dead_owner.stdout.strip()}:1"
+    argv = [sys.executable, "-c", "import time; time.sleep(600)"]
     leftover = subprocess.Popen(
-        [sys.executable, "-c", "import time; time.sleep(600)"],
-        env={**os.environ, OWNER_ENV: tag},
+        argv,
+        env={**os.environ, OWNER_ENV: tag, SPAWNED_ENV: command_tag(argv)},  # as spawn does
         start_new_session=True,
     )
     try:
