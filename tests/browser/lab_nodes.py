@@ -38,21 +38,32 @@ def _owner(process: psutil.Process, kernels: dict[str, str]) -> str:
 
 
 def node_processes(lab: LabServer) -> list[str]:
-    """Return one line per node process in the lab's process tree: pid, program, starter."""
+    """Return one line per node process of the lab's domain, wherever it runs: pid, program,
+    and who started it (a notebook's kernel, the lab, or a process outside the lab's tree)."""
     try:
         kernels = _kernels(lab)
-        root = psutil.Process(lab.process.pid)
-        processes = root.children(recursive=True)
+        inside = {p.pid for p in psutil.Process(lab.process.pid).children(recursive=True)}
     except (psutil.Error, OSError, ValueError) as exc:
         return [f"(could not list the lab's nodes: {exc})"]
     lines = []
-    for process in processes:
+    for process in psutil.process_iter():
         try:
             argv = process.cmdline()
             program = next((a for a in argv if a.endswith(NODE_EXECUTABLES)), None)
-            if program is not None:
-                name = program.rsplit("/", 1)[-1]
-                lines.append(f"{name} pid {process.pid} from {_owner(process, kernels)}")
+            if program is None:
+                continue
+            domain = process.environ().get("ROS_DOMAIN_ID")
+            if process.pid not in inside and domain != str(lab.domain_id):
+                continue  # another lab's, another test's
+            name = program.rsplit("/", 1)[-1]
+            if process.pid in inside:
+                who = _owner(process, kernels)
+            else:
+                parent = process.parent()
+                who = f"outside the lab (parent {parent.pid if parent else '?'}: " + (
+                    f"{' '.join(parent.cmdline())[:80]})" if parent else "none)"
+                )
+            lines.append(f"{name} pid {process.pid} from {who}")
         except psutil.Error:  # gone (or a zombie) since the listing
             continue
     return sorted(lines)
