@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import re
-import time
 from collections.abc import Callable
 from typing import Any
 
@@ -87,16 +86,16 @@ def _namesakes(node: str) -> tuple[bool, list[str]]:
     A node that has just stopped may still be listed for a moment with no process behind it:
     wait (bounded by the discovery lease) until it leaves or a live process is seen holding it.
     """
+    from ..core.waiting import wait_until
     from ..lab.drivers import describe, publishers
     from ..ros2.api.nodes_and_params import client
 
-    deadline = time.monotonic() + _GHOST_WAIT_S
-    while True:
+    def settled() -> tuple[bool, list[str]] | None:
         listed = node in _nodes()
         holders = [p for p in publishers(client()) if p.node == node and p.pids]
-        if not listed or holders or time.monotonic() >= deadline:
-            return listed, [describe(p) for p in holders]
-        time.sleep(0.1)
+        return (listed, [describe(p) for p in holders]) if not listed or holders else None
+
+    return wait_until(settled, _GHOST_WAIT_S, interval=0.1) or (True, [])
 
 
 def _lesson_2(lesson: Any) -> list[Check]:

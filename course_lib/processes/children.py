@@ -230,7 +230,7 @@ class ChildProcess:
                 with contextlib.suppress(Exception):
                     listener(line)
         pipe.close()
-        if stream == "stdout" or len(self._readers) == 1:
+        if stream == "stdout":
             # The output ended: the child has exited or soon will. Reap it here, so that a
             # child stopped from elsewhere (another notebook's lesson, `make stop`) never stays
             # a zombie until its owner happens to ask about it.

@@ -64,7 +64,7 @@ def test_lessons_in_two_kernels_share_one_robot_and_one_node(lab_kernel) -> None
     assert _world_pids(seven) == (sim, viewer)
     assert "speed 0.00 m/s" in again, again
     gone = seven.ok(
-        "from course_lib.ros2 import api\nimport time\nt = time.monotonic() + 5\n"
+        "from course_lib import ros2 as api\nimport time\nt = time.monotonic() + 5\n"
         "while '/param_vel_node' in api.node_list() and time.monotonic() < t: time.sleep(0.05)\n"
         "print('/param_vel_node' in api.node_list())"
     )

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import html
+import logging
 import threading
 import weakref
 from collections import deque
@@ -19,6 +20,8 @@ __all__ = [
     "parameter_events",
     "subscribe_parameter_events",
 ]
+
+_log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -69,8 +72,10 @@ class ParameterEventsFeed:
         with self._lock:
             listeners = list(self._listeners)
         for listener in listeners:
-            with contextlib.suppress(Exception):  # one widget's error never silences another
+            try:
                 listener(msg)
+            except Exception:  # one widget's error never silences another: logged, not raised
+                _log.exception("a /parameter_events listener failed")
 
     def listen(self, callback: Callable[[Any], None]) -> Callable[[], None]:
         """Call `callback` with every ParameterEvent from now on; return what stops it."""
