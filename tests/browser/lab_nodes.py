@@ -67,3 +67,27 @@ def node_processes(lab: LabServer) -> list[str]:
         except psutil.Error:  # gone (or a zombie) since the listing
             continue
     return sorted(lines)
+
+
+_GID_BLOCK = re.compile(r"Node name: (\S+)\nNode namespace: (\S+)\n.*?\nGID: ([0-9a-f.]+)", re.S)
+
+
+def hosts_of(verbose_info: str, node: str) -> list[str]:
+    """Return, for each publisher of `node` in `ros2 topic info -v` text, the processes that may
+    hold it: Fast DDS puts the low 16 bits of the pid in bytes 4-5 of an endpoint's GID."""
+    lines = []
+    for name, namespace, gid in _GID_BLOCK.findall(verbose_info):
+        if namespace.rstrip("/") + "/" + name != node:
+            continue
+        octets = [int(part, 16) for part in gid.split(".")]
+        bits = octets[4] | octets[5] << 8
+        holders = []
+        for process in psutil.process_iter():
+            if process.pid & 0xFFFF != bits:
+                continue
+            try:
+                holders.append(f"pid {process.pid} {' '.join(process.cmdline())[:120]}")
+            except psutil.Error:
+                holders.append(f"pid {process.pid} (gone)")
+        lines.append(f"{node} GID {gid}: {'; '.join(holders) or 'no live process'}")
+    return lines

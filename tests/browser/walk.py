@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from lab_graph import graph_problems
-from lab_nodes import node_processes
+from lab_nodes import hosts_of, node_processes
 from lab_ui import LabPage
 from lesson_checks import LESSONS, PROBES, cell_problems, lesson_number, run_problems
 from terminal import Terminal
@@ -145,6 +145,7 @@ class Walker:
             self._at = f"step {self.steps}"
         self.log(f"walk {self._at}: {step}")
         started = time.monotonic()
+        defects_before = len(self.defects)
         try:
             left = self.ui.dismiss_dialogs()  # what an earlier step left open
             self._record([f"a dialog was left open: {text}" for text in left])
@@ -160,6 +161,21 @@ class Walker:
             self._record([f"{type(exc).__name__}: {exc}"])
         self.log(f"  ({time.monotonic() - started:.0f} s)")
         self._log_nodes()
+        if any("param_vel_node" in defect for defect in self.defects[defects_before:]):
+            self._log_hosts("/param_vel_node")
+
+    def _log_hosts(self, node: str) -> None:
+        """Log which processes hold `node`'s /parameter_events publishers (a name listed more
+        often than its processes: which process is the extra one?)."""
+        terminal = Terminal(self.ui.page, self.ui.lab.base_url, self.ui.lab.token)
+        try:
+            info, _ = terminal.run_to_end("ros2 topic info /parameter_events --verbose")
+            for line in hosts_of(info.replace("\r\n", "\n"), node) or [f"no {node} found"]:
+                self.log(f"  host: {line}")
+        except Exception as exc:  # a diagnosis only: never a defect of its own
+            self.log(f"  host: could not list {node}'s processes: {exc}")
+        finally:
+            terminal.close()
 
     def _log_nodes(self) -> None:
         """Log the lab's node processes when a step changed them (who started which)."""
