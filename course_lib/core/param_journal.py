@@ -85,12 +85,15 @@ def append(domain: int | str | None, record: dict[str, Any]) -> None:
     data = (json.dumps(line, separators=(",", ":"), default=str) + "\n").encode()
     try:
         path = journal_path(domain)
-        fd = os.open(path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o600)
+        fd = os.open(path, os.O_RDWR | os.O_APPEND | os.O_CREAT, 0o600)
     except OSError:
         return
     try:
         fcntl.flock(fd, fcntl.LOCK_EX)
         _trim(fd, path)
+        size = os.fstat(fd).st_size
+        if size and os.pread(fd, 1, size - 1) != b"\n":
+            data = b"\n" + data  # a writer died mid-line: its torn line stays alone
         os.write(fd, data)
     except OSError:
         pass

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..ros2.paramfile import ParamFileError, read_param_file
-from ..ros2.values import ParamValue, from_journal, parse_value
+from ..ros2.values import NOT_SET, ParamValue, from_journal, parse_value
 
 __all__ = ["HistoryEntry", "ParameterHistory", "build_history", "format_value", "node_history"]
 
@@ -223,7 +223,9 @@ def _events(records: list[dict[str, Any]], node: str) -> list[dict[str, Any]]:
 
 
 class _Builder:
-    def __init__(self, records: list[dict[str, Any]], node: str, overrides: list[Any]) -> None:
+    """Pair events with requests, then walk the changes in time order to know old values."""
+
+    def __init__(self, records: list[dict[str, Any]], node: str) -> None:
         failed = {r.get("id") for r in records if r.get("t") == "failed"}
         self.requests = [
             r
@@ -231,8 +233,8 @@ class _Builder:
             if r.get("t") == "set" and r.get("node") == node and r.get("id") not in failed
         ]
         self.matched: set[int] = set()
-        self.known: dict[str, ParamValue | None] = {n: v for n, v, _s in overrides}
-        self.rows: list[dict[str, Any]] = []
+        # (record giving the time, name, new value as stored, the request or None)
+        self.changes: list[tuple[dict[str, Any], str, Any, dict[str, Any] | None]] = []
 
     def _request_for(self, event: dict[str, Any], name: str, stored: Any) -> dict[str, Any] | None:
         for index, request in enumerate(self.requests):
@@ -250,30 +252,38 @@ class _Builder:
             if change.get("kind") == "new":
                 continue  # a declaration: part of the node's start, not a change
             name, stored = str(change.get("name")), change.get("value")
-            deleted = change.get("kind") == "deleted"
-            request = self._request_for(event, name, None if deleted else stored)
-            old = self.known.get(name)
+            request = self._request_for(event, name, stored)
+            self.changes.append((event, name, stored, request))
+
+    def rows(self, overrides: list[Any], started: float | None) -> list[dict[str, Any]]:
+        """Return the rows, oldest first: start-up overrides, then every change."""
+        changes = list(self.changes)
+        changes += [  # requests no kernel saw an event of (no lesson was listening then)
+            (r, str(r.get("name")), r.get("value"), r)
+            for i, r in enumerate(self.requests)
+            if i not in self.matched
+        ]
+        changes.sort(key=lambda c: c[0]["wall"])
+        known: dict[str, ParamValue | None] = {}
+        rows = []
+        for name, value, source in overrides:
+            rows.append(_row({"wall": started}, name, known.get(name), value, source))
+            known[name] = value
+        for record, name, stored, request in changes:
+            old = known.get(name)
             if request is not None and request.get("old") is not None:
                 old = from_journal(request["old"])
-            new = None if deleted else from_journal(stored)
-            door = str(request.get("door")) if request is not None else None
-            self._add(event, name, old, new, DOORS.get(door, door) if door else OTHER)
+            new = from_journal(stored)
+            new = None if new is None or new.type == NOT_SET else new
+            door = str(request.get("door")) if request is not None else ""
+            rows.append(_row(record, name, old, new, DOORS.get(door, door) if door else OTHER))
+            known[name] = new
+        return rows
 
-    def _add(self, record: dict[str, Any], name: str, old: Any, new: Any, source: str) -> None:
-        self.known[name] = new
-        self.rows.append(
-            {"wall": record["wall"], "sim": record.get("sim"), "name": name, "old": old,
-             "new": new, "source": source, "stamp": record.get("stamp")}
-        )  # fmt: skip
 
-    def unseen_requests(self) -> None:
-        """Add the requests no kernel saw an event of (no lesson was listening then)."""
-        for index, request in enumerate(self.requests):
-            if index not in self.matched:
-                door = str(request.get("door"))
-                old = from_journal(request.get("old"))
-                new = from_journal(request.get("value"))
-                self._add(request, str(request.get("name")), old, new, DOORS.get(door, door))
+def _row(record: dict[str, Any], name: str, old: Any, new: Any, source: str) -> dict[str, Any]:
+    return {"wall": record["wall"], "sim": record.get("sim"), "name": name, "old": old,
+            "new": new, "source": source, "stamp": record.get("stamp")}  # fmt: skip
 
 
 def build_history(records: list[dict[str, Any]], node: str) -> ParameterHistory:
@@ -291,13 +301,10 @@ def build_history(records: list[dict[str, Any]], node: str) -> ParameterHistory:
         else:
             overrides = _run_overrides(record, node)
         records = records[start + 1 :]
-    builder = _Builder(records, node, [])
-    for name, value, source in overrides:
-        builder._add({"wall": started, "sim": None}, name, builder.known.get(name), value, source)
+    builder = _Builder(records, node)
     for event in _events(records, node):
         builder.event(event)
-    builder.unseen_requests()
-    rows = sorted(builder.rows, key=lambda r: r["wall"])
+    rows = builder.rows(overrides, started)
     fields = ("wall", "sim", "name", "old", "new", "source", "stamp")
     entries = tuple(HistoryEntry(n, *(r[f] for f in fields)) for n, r in enumerate(rows, 1))
     return ParameterHistory(node, started, door, tuple(overrides), entries)
