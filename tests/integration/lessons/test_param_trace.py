@@ -207,3 +207,18 @@ def test_launch_file_overrides_and_terminal_reset(lesson: Lesson, tmp_path: Path
         assert repr(lesson.reset()).endswith("  velocity: 0.3 → 0.03\n")
     finally:
         handle.stop()
+
+
+def test_speed_plot_marks_are_numbered_like_the_history(lesson: Lesson) -> None:
+    from course_lib.notebook.widgets import SpeedPlot
+
+    _start_node()
+    plot = SpeedPlot(lesson.session)
+    try:
+        assert run_line("param set /param_vel_node velocity 0.12").output.exit_code == 0
+        assert wait_until(lambda: plot.marks, 10.0)
+        (entry,) = lesson.history().entries
+        assert (entry.number, entry.source) == (1, "%ros2 magic")
+        assert [label for _t, label in plot.marks] == ["#1 velocity := 0.12"]
+    finally:
+        plot.close()
