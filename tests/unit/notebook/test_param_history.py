@@ -90,7 +90,7 @@ def test_the_plain_table_has_no_clock_and_the_html_has_both_times() -> None:
         "Parameter changes of /param_vel_node since it started (%ros2 magic):\n"
         "#1  velocity  0.0 → 0.1  %ros2 magic\n"
     )
-    assert "<td>1.50 s</td>" in history._repr_html_()
+    assert '<td class="history-time">1.50 s</td>' in history._repr_html_()
     assert repr(build_history([], NODE)) == (
         "Parameter changes of /param_vel_node (its start was not seen by the course): none.\n"
     )
