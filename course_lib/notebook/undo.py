@@ -11,6 +11,7 @@ import difflib
 import os
 from dataclasses import dataclass
 
+from ..core.errors import CourseError
 from ..core.param_journal import acting_door
 from ..ros2 import render
 from ..ros2.values import ParamValue
@@ -119,9 +120,9 @@ def diff_parameters(
 ) -> ParamDiff:
     """Compare the running values with a params file (or the start-up values when no path).
 
-    Raises ParamFileError (Jazzy's own message) when the file cannot be read.
+    Raises CourseError (with Jazzy's own message) when the file cannot be read.
     """
-    from ..ros2.paramfile import read_param_file
+    from ..ros2.paramfile import ParamFileError, read_param_file
 
     full = _full(node)
     running = _running(full)
@@ -129,7 +130,13 @@ def diff_parameters(
         expected = {**running, **_startup(node_history(full, domain), running)}
         label = "start-up values"
     else:
-        loaded = read_param_file(str(path), target_node=full, at_start=True)
+        try:
+            loaded = read_param_file(str(path), target_node=full, at_start=True)
+        except ParamFileError as exc:
+            raise CourseError(
+                f"{path} is not a params file for {full}:\n{exc.output.stderr.strip()}",
+                hint=f"compare with a file `ros2 param dump {full}` wrote, or fix the line named.",
+            ) from None
         expected = {**running, **dict(loaded)}
         label = str(path)
     return ParamDiff(full, label, _dump(full, expected), _dump(full, running))

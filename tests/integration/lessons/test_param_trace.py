@@ -222,3 +222,30 @@ def test_speed_plot_marks_are_numbered_like_the_history(lesson: Lesson) -> None:
         assert [label for _t, label in plot.marks] == ["#1 velocity := 0.12"]
     finally:
         plot.close()
+
+
+def test_reset_restores_after_each_door(lesson: Lesson, tmp_path: Path) -> None:
+    from course_lib.core.errors import CourseError
+
+    _start_node("--ros-args", "-p", "velocity:=0.05")
+    panel = lesson.parameter_panel(NODE, save_as=str(tmp_path / "panel.yaml"))
+    doors = {
+        "%ros2 magic": lambda: run_line("param set /param_vel_node velocity 0.2"),
+        "terminal ros2": lambda: _terminal(
+            lesson.session, "param set /param_vel_node velocity 0.2"
+        ),
+        "parameter panel": lambda: panel.set("velocity", 0.2),
+        "another node": lambda: _other_node_sets(lesson.session, 0.2),
+    }
+    try:
+        for door, set_it in doors.items():
+            set_it()
+            assert wait_until(lambda: api.param_get(NODE, "velocity").value == 0.2, 5.0), door
+            assert repr(lesson.reset()).endswith("velocity: 0.2 → 0.05\n"), door
+            assert api.param_get(NODE, "velocity").value == 0.05, door
+    finally:
+        panel.close()
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("velocity: [\n")
+    with pytest.raises(CourseError, match="is not a params file for /param_vel_node"):
+        lesson.diff(path=bad)
