@@ -126,7 +126,10 @@ def _started_node(records: list[dict[str, Any]], index: int) -> str | None:
             break
         if later.get("t") == "named" and later.get("exe") == record.get("exe"):
             return str(later.get("node"))
-    return None
+    # A terminal's `ros2 run` prints its log to the terminal, not to the course: the name the
+    # same executable had when a lesson ran it.
+    named = [r for r in records if r.get("t") == "named" and r.get("exe") == record.get("exe")]
+    return str(named[-1].get("node")) if named else None
 
 
 @dataclass(frozen=True)

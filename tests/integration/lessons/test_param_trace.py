@@ -7,6 +7,8 @@ is started with a params file and by a launch file: the history must name each s
 
 from __future__ import annotations
 
+import os
+import signal
 import subprocess
 import sys
 import textwrap
@@ -249,3 +251,35 @@ def test_reset_restores_after_each_door(lesson: Lesson, tmp_path: Path) -> None:
     bad.write_text("velocity: [\n")
     with pytest.raises(CourseError, match="is not a params file for /param_vel_node"):
         lesson.diff(path=bad)
+
+
+def test_a_node_the_terminal_runs_has_its_params_file_traced(
+    lesson: Lesson, tmp_path: Path
+) -> None:
+    _start_node()  # a lesson ran this executable once: its node's name is known
+    lesson.stop_nodes()
+    params = tmp_path / "terminal.yaml"
+    params.write_text("/**:\n  ros__parameters:\n    velocity: 0.06\n")
+    env = {**lesson.session.env, "PYTHONPATH": str(REPO_ROOT)}
+    command = ["run", "parameter_tests", "param_vel", "--ros-args", "--params-file"]
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "course_lib.ros2.command.cli", *command, str(params)],
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,  # Ctrl-C in a terminal reaches its whole process group
+    )
+    try:
+        assert wait_until(lambda: NODE in api.node_list(), 15.0)
+        assert _terminal(lesson.session, "param set /param_vel_node velocity 0.2") == (
+            "Set parameter successful\n"
+        )
+        history = _entries_settle(lesson, 2)
+        assert [(e.new.value, e.source) for e in history] == [
+            (0.06, "params file terminal.yaml"),
+            (0.2, "terminal ros2"),
+        ]
+        assert lesson.history().start_door == "terminal ros2"
+    finally:
+        os.killpg(proc.pid, signal.SIGINT)
+        proc.wait(15)
