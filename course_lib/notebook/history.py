@@ -50,6 +50,13 @@ class HistoryEntry:
     stamp: float | None = None  # the /parameter_events stamp, when an event was seen
 
 
+def door_label(door: str) -> str:
+    """Return how the history names a door (`terminal|params file x.yaml` → the file first)."""
+    base, _bar, what = door.partition("|")
+    label = DOORS.get(base, base)
+    return f"{what} ({label})" if what else label
+
+
 def format_value(value: ParamValue | None) -> str:
     """Return a value as `ros2 param dump` writes it (`0.2`, `true`, `[1, 2]`); `—` unknown."""
     if value is None:
@@ -88,7 +95,7 @@ def _file_values(path: str, node: str, cwd: str | None) -> list[tuple[str, Param
 
 def _run_overrides(record: dict[str, Any], node: str) -> list[tuple[str, ParamValue, str]]:
     args, cwd = list(record.get("args") or []), record.get("cwd")
-    door = DOORS.get(str(record.get("door")), str(record.get("door")))
+    door = door_label(str(record.get("door")))
     found: list[tuple[str, ParamValue, str]] = []
     for flag, value in itertools.pairwise(args):
         if flag in ("-p", "--param") and ":=" in value:
@@ -285,7 +292,7 @@ class _Builder:
             new = from_journal(stored)
             new = None if new is None or new.type == NOT_SET else new
             door = str(request.get("door")) if request is not None else ""
-            rows.append(_row(record, name, old, new, DOORS.get(door, door) if door else OTHER))
+            rows.append(_row(record, name, old, new, door_label(door) if door else OTHER))
             known[name] = new
         return rows
 
@@ -303,7 +310,7 @@ def build_history(records: list[dict[str, Any]], node: str) -> ParameterHistory:
     if start is not None:
         record = records[start]
         started = float(record.get("wall", 0.0))
-        door = DOORS.get(str(record.get("door")), str(record.get("door")))
+        door = door_label(str(record.get("door")))
         if record.get("door") == "launch":
             overrides = _launch_overrides(record, node)
             door = f"launch file {os.path.basename(str(record.get('launch_file') or '?'))}"

@@ -161,6 +161,10 @@ def test_diff_against_a_params_file(lesson: Lesson, tmp_path: Path) -> None:
         "+    velocity: 0.2",
     ]
     assert repr(lesson.diff(path=dump)).startswith(f"--- {dump}\n+++ /param_vel_node (running)")
+    assert run_line(f"param load /param_vel_node {dump}").output.exit_code == 0
+    assert lesson.diff(path=dump).same
+    last = _entries_settle(lesson, 2)[-1]
+    assert (last.new.value, last.source) == (0.0, "params file dump.yaml (%ros2 magic)")
 
 
 def test_a_restarted_node_starts_a_new_history(lesson: Lesson) -> None:
