@@ -8,8 +8,10 @@ duplicates made on purpose behave as on a real ROS 2 machine.
 
 from __future__ import annotations
 
+import os
 import threading
 
+from ..core import param_journal
 from ..processes.children import ChildProcess, OutputLine, owner_tag
 from .client import machine_client
 from .register import NodeRecord, NodeRegister, node_name_from_log
@@ -70,6 +72,10 @@ def _register(child: ChildProcess, executable: str, node: str, label: str) -> No
     if not child.alive:
         return
     record = NodeRecord(executable, node, owner_tag(child.pid), label)
+    if node:  # the parameter journal's start record named the executable only
+        param_journal.append(
+            os.environ.get("ROS_DOMAIN_ID"), {"t": "named", "exe": executable, "node": node}
+        )
     client = machine_client()
     if client is not None:
         client.request("node.register", **record.as_dict())

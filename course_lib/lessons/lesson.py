@@ -327,6 +327,26 @@ class Lesson:
         self.state["saved_params"] = path
         return self.show_file(path)
 
+    def history(self, node: str = "/param_vel_node") -> Any:
+        """Show each change of `node`'s parameters since it started, and where it came from."""
+        from ..notebook.history import node_history
+
+        return node_history(node, self.session.domain_id)
+
+    def reset(self, node: str = "/param_vel_node") -> Any:
+        """Set every parameter of `node` back to its start-up value; say what changed."""
+        from ..notebook.undo import reset_parameters
+
+        return reset_parameters(node, self.session.domain_id)
+
+    def diff(
+        self, node: str = "/param_vel_node", path: str | os.PathLike[str] | None = None
+    ) -> Any:
+        """Compare `node`'s running values with a params file (or its start-up values)."""
+        from ..notebook.undo import diff_parameters
+
+        return diff_parameters(node, self.session.domain_id, path)
+
     def travel_exercise(self) -> Any:
         """Arm lesson 11's travel exercise (robot to its start pose) and return its checker."""
         from .exercise import TravelExercise

@@ -10,6 +10,7 @@ import html
 import shlex
 from typing import Any
 
+from ..core.param_journal import acting_door
 from ..ros2.results import CommandOutput
 
 __all__ = ["CommandResult", "load_ipython_extension", "run_line"]
@@ -86,7 +87,8 @@ def run_line(line: str) -> CommandResult:
     command = "ros2 " + " ".join(shlex.quote(a) for a in argv)
     console = CollectingConsole(width=80)
     ctx = Context(console, client, background_run=_background_run)
-    return CommandResult(command, console.result(execute(argv, ctx)))
+    with acting_door("%ros2"):
+        return CommandResult(command, console.result(execute(argv, ctx)))
 
 
 def _ros2_magic(line: str, cell: str | None = None) -> Any:

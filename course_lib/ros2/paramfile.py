@@ -90,16 +90,26 @@ def _flatten(prefix: str, tree: dict[Any, Any]) -> list[tuple[str, ParamValue]]:
 
 
 def read_param_file(
-    path: str, *, use_wildcard: bool = True, target_node: str | None = None, cwd: str | None = None
+    path: str,
+    *,
+    use_wildcard: bool = True,
+    target_node: str | None = None,
+    cwd: str | None = None,
+    at_start: bool = False,
 ) -> list[tuple[str, ParamValue]]:
     """Return the (name, value) pairs `ros2 param load` would send, in its order.
 
     Values go through `str()` and YAML again, as rclpy does: `velocity: 1` stays an integer.
-    Raises ParamFileError carrying the real tool's stderr and exit code.
+    `at_start`: only the sections a node started with `--params-file` takes (`/**` and its
+    own name), as rcl applies them. Raises ParamFileError carrying the real tool's stderr and
+    exit code.
     """
     data = _load_yaml(path, cwd)
     merged: dict[Any, Any] = {}
-    for key in _section_keys(data, use_wildcard, target_node):
+    keys = _section_keys(data, use_wildcard, target_node)
+    if at_start:
+        keys = [k for k in keys if k == WILDCARD or _is_target(k, target_node)]
+    for key in keys:
         section = data[key]
         if not isinstance(section, dict) or "ros__parameters" not in section:
             raise _refusal(f"YAML file is not a valid ROS parameter file for node {key}")

@@ -13,6 +13,8 @@ __all__ = [
     "TYPE_NAMES",
     "VALUE_FIELDS",
     "ParamValue",
+    "from_journal",
+    "journal_value",
     "parse_value",
     "type_name",
     "value_from_msg",
@@ -142,3 +144,21 @@ def value_from_msg(msg: Any) -> ParamValue:
     if msg.type in ARRAY_TYPES:
         raw = tuple(raw.tolist() if hasattr(raw, "tolist") else raw)
     return ParamValue(msg.type, raw)
+
+
+def journal_value(value: ParamValue) -> list[Any]:
+    """Return a value as the parameter journal stores it: `[type, plain JSON value]`."""
+    raw = value.python
+    if value.type == BYTE_ARRAY:
+        raw = [b[0] if isinstance(b, bytes) else int(b) for b in raw]
+    return [value.type, raw]
+
+
+def from_journal(stored: Any) -> ParamValue | None:
+    """Return the ParamValue of a journal's `[type, value]` (None for anything else)."""
+    if not isinstance(stored, list) or len(stored) != 2 or stored[0] not in TYPE_NAMES:
+        return None
+    kind, raw = stored
+    if kind == BYTE_ARRAY:
+        return ParamValue(kind, tuple(bytes([b]) for b in raw))
+    return ParamValue(kind, tuple(raw) if kind in ARRAY_TYPES else raw)

@@ -15,7 +15,7 @@ import time
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from ..core import ament
+from ..core import ament, param_journal
 from ..core.errors import SessionClosedError, SessionThreadError
 from ..core.paths import PACKAGE_DIR
 from ..processes.children import ChildProcess, reap_orphans, spawn
@@ -218,6 +218,9 @@ class Session:
     ) -> ChildProcess:
         """Start `executable` of `package` as `ros2 run package executable args...` does."""
         path = ament.find_executable(package, executable, self.env)
+        with param_journal.acting_door("lesson.run"):
+            where = str(cwd) if cwd else None
+            param_journal.record_start(self.domain_id, executable, list(args), cwd=where)
         return self.spawn([str(path), *args], name=name or executable, cwd=cwd)
 
     def stop_children(self, *, timeout: float = 5.0) -> None:

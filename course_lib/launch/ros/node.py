@@ -8,6 +8,7 @@ from typing import Any
 
 import yaml
 
+from ...core import param_journal
 from ..api.process import ExecuteProcess, ProcessSpec
 from ..api.substitutions import ExecutableInPackage
 from ..core.entity import Action
@@ -175,6 +176,8 @@ class Node(ExecuteProcess):
 
     def execute(self, context: Any) -> None:
         super().execute(context)
+        if context.runtime is not None and self.spec is not None:
+            self._journal_start(context)
         if self.is_node_name_fully_specified() and self.spec is not None:
             context.node_names.append(self.node_name)
             count = context.node_names.count(self.node_name)
@@ -185,6 +188,30 @@ class Node(ExecuteProcess):
                     f"there are now at least {count} nodes with the name "
                     f"{self.node_name} created within this launch context",
                 )
+
+    def _journal_name(self) -> str | None:
+        """Return the node's full name as it will run (no namespace given: the root one)."""
+        name = (self.node_name or "").replace(UNSPECIFIED_NAMESPACE + "/", "/")
+        return None if UNSPECIFIED_NAME in name or not name else name.replace("//", "/")
+
+    def _journal_start(self, context: Any) -> None:
+        """Tell the lab's parameter journal where this node's start-up overrides come from."""
+        assert self.spec is not None
+        param_journal.append(
+            self.spec.env.get("ROS_DOMAIN_ID") or os.environ.get("ROS_DOMAIN_ID"),
+            {
+                "t": "start",
+                "door": "launch",
+                "launch_file": str(getattr(context.locals, "current_launch_file_path", "")),
+                "exe": os.path.basename(str(self.spec.cmd[0])),
+                "node": self._journal_name(),
+                "sources": [
+                    {"kind": s.kind, "path": s.path, "values": s.values}
+                    for s in self.parameter_sources
+                ],
+                "cwd": self.spec.cwd or os.getcwd(),
+            },
+        )
 
 
 class PushRosNamespace(Action):

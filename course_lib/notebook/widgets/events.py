@@ -62,8 +62,9 @@ class ParameterEventsFeed:
         from rcl_interfaces.msg import ParameterEvent
         from rclpy.qos import qos_profile_parameter_events
 
-        self._listeners: list[Callable[[Any], None]] = []
+        self._listeners: list[Callable[[Any], None]] = [self._journal]
         self._lock = threading.Lock()
+        self._session = session
         self._sub = session.node.create_subscription(
             ParameterEvent, "/parameter_events", self._on_event, qos_profile_parameter_events
         )
@@ -77,6 +78,26 @@ class ParameterEventsFeed:
             except Exception:  # one widget's error never silences another: logged, not raised
                 _log.exception("a /parameter_events listener failed")
 
+    def _journal(self, msg: Any) -> None:
+        """Write the event to the lab's parameter journal (lesson.history reads it)."""
+        from ...core import param_journal
+        from ...ros2.values import journal_value, value_from_msg
+
+        if msg.node.startswith("/_"):  # the course's and ros2cli's own hidden nodes
+            return
+        changes = [
+            {"kind": kind, "name": p.name, "value": journal_value(value_from_msg(p.value))}
+            for kind, params in (
+                ("new", msg.new_parameters),
+                ("changed", msg.changed_parameters),
+                ("deleted", msg.deleted_parameters),
+            )
+            for p in params
+        ]
+        stamp = msg.stamp.sec + msg.stamp.nanosec * 1e-9
+        record = {"t": "event", "node": msg.node, "stamp": stamp, "sim": _sim_now(self._session)}
+        param_journal.append(self._session.domain_id, {**record, "changes": changes})
+
     def listen(self, callback: Callable[[Any], None]) -> Callable[[], None]:
         """Call `callback` with every ParameterEvent from now on; return what stops it."""
         with self._lock:
@@ -87,6 +108,15 @@ class ParameterEventsFeed:
                 self._listeners.remove(callback)
 
         return stop
+
+
+def _sim_now(session: Any) -> float | None:
+    """Return the simulated time of the world this kernel shows, if any (from /odom)."""
+    from ..world import _worlds
+
+    world = _worlds.get(id(session))
+    latest = getattr(world, "_latest", None)
+    return None if latest is None else round(latest.time_s, 3)
 
 
 _feeds: weakref.WeakKeyDictionary[Any, ParameterEventsFeed] = weakref.WeakKeyDictionary()

@@ -11,6 +11,7 @@ import threading
 from pathlib import Path
 from typing import Any
 
+from ...core.param_journal import acting_door
 from ...ros2.values import BOOL, DOUBLE, INTEGER
 from .events import changes_of, subscribe_parameter_events
 from .yaml_file import params_yaml, set_command, write_params_file
@@ -101,7 +102,8 @@ class ParameterPanel:
         if isinstance(value, float):
             value = round(value, 6)
         command = set_command(self.node, name, value)
-        result = api.param_set(self.node, name, value)
+        with acting_door("panel"):
+            result = api.param_set(self.node, name, value)
         answer = (
             "Set parameter successful"
             if result.successful

@@ -46,9 +46,22 @@ class SpeedPlot:
             for c in changes_of(msg)
             if c.kind == "changed" and c.name == "velocity" and c.node == self.node
         ]
+        if not changed:
+            return
+        number = self._history_number(msg)
         with self._lock:
             now = self.samples[-1][0] if self.samples else 0.0
-            self.marks += [(now, f"velocity := {c.value:g}") for c in changed]
+            self.marks += [(now, f"{number}velocity := {c.value:g}") for c in changed]
+
+    def _history_number(self, msg: Any) -> str:
+        """Return `#n ` where n numbers the same change in `lesson.history()` (the feed
+        journals each event before any widget hears it), or '' if the history lacks it."""
+        from ..history import node_history
+
+        stamp = msg.stamp.sec + msg.stamp.nanosec * 1e-9
+        entries = node_history(self.node, self.session.domain_id).entries
+        found = [e.number for e in entries if e.stamp == stamp and e.name == "velocity"]
+        return f"#{found[-1]} " if found else ""
 
     def png(self) -> bytes:
         """Return the plot so far as PNG bytes."""

@@ -102,7 +102,14 @@ def _course_domain() -> str | None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run `ros2 <argv>` and return its exit code."""
+    """Run `ros2 <argv>` and return its exit code (requests tagged as the terminal's)."""
+    from course_lib.core.param_journal import acting_door
+
+    with acting_door("terminal"):
+        return _main(argv)
+
+
+def _main(argv: list[str] | None) -> int:
     from course_lib.ros2.command.table import uses_graph
 
     argv = list(sys.argv[1:] if argv is None else argv)

@@ -21,6 +21,7 @@ import time
 from collections.abc import Mapping
 from typing import Any
 
+from ...core.param_journal import acting_door
 from ...processes.children import OWNER_ENV, ChildProcess, owner_alive, spawn
 from ..node.connect import IDLE_ENV, SHUTDOWN, daemon_argv, daemon_lock, daemon_socket
 from ..verbs.console import StreamingConsole
@@ -86,7 +87,8 @@ class _Connection:
             console = StreamingConsole(write, width=int(request.get("width", 80)))
             threading.Thread(target=self.watch_hang_up, args=(console,), daemon=True).start()
             ctx = Context(console, self.client_factory, cwd=request.get("cwd"))
-            code = execute(list(request["argv"]), ctx)
+            with acting_door("terminal"):  # only the terminal's `ros2` asks the daemon
+                code = execute(list(request["argv"]), ctx)
             self.send({"exit": code})
 
 

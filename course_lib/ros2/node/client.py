@@ -17,9 +17,10 @@ from rclpy.action.graph import (
 )
 from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
 
+from ...core import param_journal
 from ...core.waiting import wait_until
 from ..results import Descriptor, NodeInfo, NodeName, ParamRange, SetResult, TopicInfo
-from ..values import VALUE_FIELDS, ParamValue, value_from_msg
+from ..values import VALUE_FIELDS, ParamValue, journal_value, value_from_msg
 from .discovery import (
     UNKNOWN_NODE,
     GraphView,
@@ -310,15 +311,53 @@ class RosClient:
     def set_parameters(
         self, node_name: str, values: Sequence[tuple[str, ParamValue]]
     ) -> list[SetResult]:
-        """Set each parameter on its own (not atomically); return one result per parameter."""
+        """Set each parameter on its own (not atomically); return one result per parameter.
+
+        The request is written to the lab's parameter journal first (with the values it
+        replaces), so that the node's /parameter_events can be traced to this door.
+        """
         params = [Parameter(name=n, value=value_to_msg(v)) for n, v in values]
+        marks = self._journal_request(node_name, values)
         response = self._call(
             node_name, "set_parameters", SetParameters.Request(parameters=params)
         )
-        return [
+        results = [
             SetResult(r.successful, r.reason, name)
             for r, (name, _v) in zip(response.results, values, strict=False)
         ]
+        refused = [m for m, r in zip(marks, results, strict=False) if not r.successful]
+        for mark in refused:
+            param_journal.append(self._domain_id, {"t": "failed", "id": mark})
+        return results
+
+    def _journal_request(
+        self, node_name: str, values: Sequence[tuple[str, ParamValue]]
+    ) -> list[str]:
+        """Record a set request and the values it replaces; return each record's id."""
+        names = [n for n, _v in values]
+        try:
+            old = self.get_parameters(node_name, names)
+        except ServiceCallError:
+            old = []
+        door = param_journal.current_door()
+        marks = []
+        for index, (name, value) in enumerate(values):
+            mark = f"{os.getpid()}-{time.monotonic_ns()}-{index}"
+            before = old[index] if index < len(old) else None
+            param_journal.append(
+                self._domain_id,
+                {
+                    "t": "set",
+                    "id": mark,
+                    "door": door,
+                    "node": node_name,
+                    "name": name,
+                    "value": journal_value(value),
+                    "old": journal_value(before) if before is not None else None,
+                },
+            )
+            marks.append(mark)
+        return marks
 
     def describe_parameters(self, node_name: str, names: Sequence[str]) -> list[Descriptor]:
         """Return the descriptors of `names`."""

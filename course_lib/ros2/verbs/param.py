@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import argparse
+import os
 from typing import Any
 
+from ...core.param_journal import acting_door, current_door
 from .. import render
 from ..paramfile import ParamFileError, read_param_file
 from ..results import ParamListing, node_name_of
@@ -152,7 +154,9 @@ def param_load(args: argparse.Namespace, ctx: Context) -> Any:
         )
     except ParamFileError as exc:
         return ctx.console.emit(exc.output)
-    results = ctx.client.set_parameters(node, values) if values else []
+    door = f"{current_door()}|params file {os.path.basename(args.parameter_file)}"
+    with acting_door(door):  # the history names the file and the door it came through
+        results = ctx.client.set_parameters(node, values) if values else []
     return ctx.console.emit(render.param_load(results))
 
 

@@ -9,7 +9,7 @@ import signal
 from pathlib import Path
 from typing import Any
 
-from ....core import ament
+from ....core import ament, param_journal
 from ....core.errors import PackageNotFoundError
 from ..absent_programs import absent_program_hint
 from ..context import Context
@@ -104,6 +104,9 @@ def run(args: argparse.Namespace, ctx: Context) -> Any:
     cmd = [str(found), *args.argv]
     if args.prefix is not None:
         cmd = shlex.split(args.prefix) + cmd
+    param_journal.record_start(
+        env.get("ROS_DOMAIN_ID"), args.executable_name, list(args.argv), cwd=ctx.cwd
+    )
     starter = getattr(ctx, "background_run", None)
     if starter is not None:
         return starter(cmd, args.executable_name, ctx)
