@@ -55,7 +55,11 @@ class CourseSettings:
         ge=0.05,
         le=0.26,
     )
-    show_hints: bool = setting(True, help="show a hint after a failed exercise attempt")
+    show_hints: bool = setting(
+        True,
+        help="show a hint after a failed exercise attempt, and under a mistaken `%ros2` command "
+        "or params file in the notebooks (the terminal's `ros2` never shows hints)",
+    )
     travel_exercise: TravelExercise = TravelExercise()
 
 

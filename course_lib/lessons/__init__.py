@@ -49,6 +49,9 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
     _prepare_ipython()  # first: a broken setting below then shows as the course's two lines
     course_path = Path(settings_path) if settings_path is not None else None
     settings, _world = load_checked_settings(course_path)  # a ConfigError: file, line, key
+    from ..notebook.hints import set_enabled
+
+    set_enabled(settings.show_hints)  # `%ros2` mistakes' hints too, not only exercises'
     session = get_session()
     parameter_events(session)  # listening from now on: no later change is missed (events.py)
     set_label(f"lesson {number}")

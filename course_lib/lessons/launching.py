@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import html
 from typing import Any
 
 from ..core.errors import CourseError
@@ -13,13 +14,29 @@ __all__ = ["LaunchRun", "start_launch"]
 class LaunchRun:
     """A running `ros2 launch` started by a lesson."""
 
-    def __init__(self, handle: Any, command: str, first_lines: list[str]) -> None:
+    def __init__(
+        self, handle: Any, command: str, first_lines: list[str], hints: list[str] | None = None
+    ) -> None:
         self.handle = handle
         self.command = command
         self.first_lines = first_lines
+        self.hints = hints or []
 
     def __repr__(self) -> str:
-        return "".join(f"{line}\n" for line in [f"$ {self.command}", *self.first_lines])
+        from ..notebook.hints import as_text
+
+        lines = [f"$ {self.command}", *self.first_lines]
+        return "".join(f"{line}\n" for line in lines) + as_text(self.hints)
+
+    def _repr_html_(self) -> str | None:
+        """Return the lines and the hints set apart, or None (plain text only) without hints."""
+        if not self.hints:
+            return None
+        from ..notebook.hints import as_html
+
+        lines = [f"$ {self.command}", *self.first_lines]
+        body = html.escape("".join(f"{line}\n" for line in lines))
+        return f'<pre style="margin:0">{body}</pre>{as_html(self.hints)}'
 
     def stop(self) -> Text:
         """Stop the launch as Ctrl-C does; launch stops its nodes first."""
@@ -27,13 +44,31 @@ class LaunchRun:
         return Text(f"ros2 launch stopped (Ctrl-C), exit code {code}.")
 
 
-def _executables(package: str, file: str, *args: str) -> list[str]:
-    """Return the names of the executables the launch file starts (read, not run)."""
+def _planned(package: str, file: str, *args: str) -> tuple[list[str], list[str]]:
+    """Return the executables the launch file starts and the files its nodes get through
+    `--params-file` (read, not run)."""
     from pathlib import Path
 
     from ..launch.command.dry_run import dry_run
+    from ..notebook.hints import params_files
 
-    return sorted({Path(plan.cmd[0]).name for plan in dry_run(package, file, *args).nodes})
+    plans = dry_run(package, file, *args).nodes
+    files = [f for plan in plans for f in params_files(plan.cmd)]
+    return sorted({Path(plan.cmd[0]).name for plan in plans}), list(dict.fromkeys(files))
+
+
+def _params_file_hints(handle: Any, files: list[str], before: set[str]) -> list[str]:
+    """Return the hints for the launch's params files, checked against its running nodes."""
+    import os
+
+    from ..notebook import hints
+    from ..ros2.api.nodes_and_params import client
+
+    if not files:
+        return []
+    now = {n.full_name for n in client().node_names()}
+    started = hints.started_nodes(handle.output, before, now)
+    return hints.params_file_hints(files, started, client, cwd=os.getcwd())
 
 
 def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 4) -> LaunchRun:
@@ -42,11 +77,12 @@ def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 
     from ..launch import launch
     from ..ros2.api import nodes_and_params as api
 
-    executables = _executables(package, file, *args)
+    executables, files = _planned(package, file, *args)
     for executable in executables:
         taken = take_over(executable)
         if taken:
             print(taken)
+    before = {n.full_name for n in api.client().node_names()} if files else set()
     handle = launch(package, file, *args, session=lesson.session)
     command = " ".join(["ros2", "launch", package, file, *args])
     if handle.wait_for(r"Velocity parameter is", timeout=15.0) is None:
@@ -64,4 +100,5 @@ def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 
     lesson.state.setdefault("launches", []).append(handle)
     value = api.param_get("/param_vel_node", "velocity").value
     lesson.state.setdefault("launch_velocities", []).append(value)
-    return LaunchRun(handle, command, handle.output[:lines])
+    notes = _params_file_hints(handle, files, before)
+    return LaunchRun(handle, command, handle.output[:lines], notes)

@@ -6,6 +6,7 @@ world, run and stop nodes, show their log lines, show and edit files, and the se
 
 from __future__ import annotations
 
+import html
 import os
 import re
 import shlex
@@ -41,13 +42,25 @@ _RCLPY_OWN = re.compile(r"'(use_sim_time|start_type_description_service)' .* is 
 
 
 class LogLines:
-    """Log lines of a node, shown as its terminal shows them."""
+    """Log lines of a node, shown as its terminal shows them (then the course's hints)."""
 
-    def __init__(self, lines: list[str]) -> None:
+    def __init__(self, lines: list[str], hints: list[str] | None = None) -> None:
         self.lines = lines
+        self.hints = hints or []
 
     def __repr__(self) -> str:
-        return "".join(f"{line}\n" for line in self.lines)
+        from ..notebook.hints import as_text
+
+        return "".join(f"{line}\n" for line in self.lines) + as_text(self.hints)
+
+    def _repr_html_(self) -> str | None:
+        """Return the lines and the hints set apart, or None (plain text only) without hints."""
+        if not self.hints:
+            return None
+        from ..notebook.hints import as_html
+
+        body = html.escape("".join(f"{line}\n" for line in self.lines))
+        return f'<pre style="margin:0">{body}</pre>{as_html(self.hints)}'
 
 
 class Lesson:
@@ -142,12 +155,15 @@ class Lesson:
     def run(self, package: str, executable: str, *args: str, timeout: float = 10.0) -> LogLines:
         """Start a node like `ros2 run`; show its first log line, or how it failed."""
         from ..lab.takeover import keep_one_driver, remember, take_over
+        from ..notebook import hints
         from ..ros2.api.nodes_and_params import client
 
         command = " ".join(shlex.quote(a) for a in ("ros2", "run", package, executable, *args))
         taken = take_over(executable)
         if taken:
             print(taken)
+        files = hints.params_files(args)
+        before = {n.full_name for n in client().node_names()} if files else set()
         child = self.session.run(package, executable, *args, cwd=os.getcwd())
         self.started[executable] = child
         first = child.wait_for_line(lambda line: line.text.startswith("["), timeout)
@@ -157,7 +173,12 @@ class Lesson:
             driver = keep_one_driver(child)
             if driver:
                 print(driver)
-            return LogLines([f"$ {command}", first.text])
+            notes: list[str] = []
+            if files:
+                now = {n.full_name for n in client().node_names()}
+                started = hints.started_nodes((ln.text for ln in child.lines), before, now)
+                notes = hints.params_file_hints(files, started, client, cwd=os.getcwd())
+            return LogLines([f"$ {command}", first.text], notes)
         code = child.wait(timeout)
         last = [ln.text for ln in child.lines if ln.text.strip()][-1:]
         return LogLines(

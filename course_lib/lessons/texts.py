@@ -94,6 +94,7 @@ TEMPLATES: dict[str, dict[str, Template]] = {
 
 # notebook file name -> the settings its cells and outputs depend on
 _USED: dict[str, tuple[str, ...]] = {
+    "06_check_parameters.ipynb": ("show_hints",),  # a `%ros2` mistake's hint
     "07_move_the_robot.ipynb": ("default_velocity_mps",),
     "11_beyond_the_tutorial.ipynb": (
         "default_velocity_mps",

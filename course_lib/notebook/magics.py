@@ -2,16 +2,21 @@
 
 The plain-text form of each result is exactly what the real `ros2` prints (stdout then
 stderr), so nbval can compare it; the HTML form adds the prompt, red stderr and the exit code.
+After a mistake, a course hint (`hints.py`) follows on its own line: `Hint: ...` in plain text,
+a blue line apart in HTML; Jazzy's text above it is unchanged.
 """
 
 from __future__ import annotations
 
+import functools
 import html
 import shlex
+from collections.abc import Sequence
 from typing import Any
 
 from ..core.param_journal import acting_door
 from ..ros2.results import CommandOutput
+from . import hints as course_hints
 
 __all__ = ["CommandResult", "load_ipython_extension", "run_line"]
 
@@ -19,14 +24,21 @@ _STYLE = "font-family:monospace;white-space:pre-wrap;margin:0"
 
 
 class CommandResult:
-    """One command and its output, displayed like a terminal (plain text: the output only)."""
+    """One command and its output, displayed like a terminal (plain text: the output, then
+    the course's hints, if any)."""
 
-    def __init__(self, command: str, output: CommandOutput) -> None:
+    def __init__(self, command: str, output: CommandOutput, hints: Sequence[str] = ()) -> None:
         self.command = command
         self.output = output
+        self.hints = list(hints)
+
+    @property
+    def text(self) -> str:
+        """Return Jazzy's text (stdout then stderr), then one `Hint: ...` line per hint."""
+        return self.output.text + course_hints.as_text(self.hints)
 
     def __repr__(self) -> str:
-        return self.output.text
+        return self.text
 
     def _repr_html_(self) -> str:
         parts = [
@@ -41,35 +53,49 @@ class CommandResult:
             )
         if self.output.exit_code:
             parts.append(f'<span style="color:#c62828">[exit code {self.output.exit_code}]</span>')
-        return "".join(parts) + "</div>"
+        return "".join(parts) + course_hints.as_html(self.hints) + "</div>"
 
 
 RUN_SEEN_WAIT_S = 3.0  # at most, after the node's first line, until this kernel has seen it
 
 
-def _background_run(cmd: list[str], name: str, ctx: Any) -> int:
+def _started(child: Any, before: set[str]) -> list[str]:
+    """Return the nodes `child` started (see `hints.started_nodes`)."""
+    from ..ros2.api.nodes_and_params import client
+
+    now = {n.full_name for n in client().node_names()}
+    return course_hints.started_nodes((ln.text for ln in child.lines), before, now)
+
+
+def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) -> int:
     """Start `ros2 run`'s executable as a session child and show its first lines.
 
     A node of the same executable that a lesson left running is stopped first, and so is any
     other lessons' node that drives the robot when this one does (a line says so, printed
-    apart from the command's own output).
+    apart from the command's own output). A `--params-file` that sets nothing on the nodes it
+    started adds a hint to `notes`.
     """
     from ..lab.takeover import keep_one_driver, remember, take_over
+    from ..ros2.api.nodes_and_params import client
     from ..session.session import get_session
 
     taken = take_over(name)
     if taken:
         print(taken)
+    files = course_hints.params_files(cmd)
+    before = {n.full_name for n in client().node_names()} if files else set()
     child = get_session().spawn(cmd, name=name, cwd=ctx.cwd)
     child.wait_for_line(lambda _line: True, timeout=3.0)
     remember(child, name)
     if child.alive:  # the next command (`%ros2 node list`) sees the new node, even under load
-        from ..ros2.api.nodes_and_params import client
-
         client().wait_all_seen(timeout=RUN_SEEN_WAIT_S)
         driver = keep_one_driver(child)
         if driver:
             print(driver)
+        if files:
+            notes += course_hints.params_file_hints(
+                files, _started(child, before), client, cwd=ctx.cwd
+            )
     for line in child.lines[:5]:
         (ctx.console.err if line.stream == "stderr" else ctx.console.out)(line.text + "\n")
     return 0 if child.alive else int(child.returncode or 0)
@@ -86,9 +112,12 @@ def run_line(line: str) -> CommandResult:
         argv = argv[1:]
     command = "ros2 " + " ".join(shlex.quote(a) for a in argv)
     console = CollectingConsole(width=80)
-    ctx = Context(console, client, background_run=_background_run)
+    notes: list[str] = []
+    ctx = Context(console, client, background_run=functools.partial(_background_run, notes=notes))
     with acting_door("%ros2"):
-        return CommandResult(command, console.result(execute(argv, ctx)))
+        output = console.result(execute(argv, ctx))
+    hint = course_hints.command_hint(argv, output.stdout, output.stderr, client)
+    return CommandResult(command, output, [*notes, *([hint] if hint else [])])
 
 
 def _ros2_magic(line: str, cell: str | None = None) -> Any:
@@ -100,7 +129,7 @@ def _ros2_magic(line: str, cell: str | None = None) -> Any:
             continue
         result = run_line(text)
         # raw: IPython's plain-text formatter would drop the final newline the CLI prints
-        display({"text/plain": result.output.text, "text/html": result._repr_html_()}, raw=True)
+        display({"text/plain": result.text, "text/html": result._repr_html_()}, raw=True)
 
 
 def load_ipython_extension(ipython: Any) -> None:

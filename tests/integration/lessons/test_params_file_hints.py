@@ -1,0 +1,145 @@
+"""A params file that sets nothing on the node it is given to: the node's own lines, then a hint.
+
+Through `%ros2 run ... --ros-args --params-file`, `lesson.run` and `lesson.launch`, against the
+real tutorial node of the course workspace; the terminal's `ros2 run` adds nothing.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from course_lib.config.course import load_course_settings
+from course_lib.core import ament
+from course_lib.core.errors import PackageNotFoundError
+from course_lib.lessons import Lesson
+from course_lib.notebook.magics import run_line
+from course_lib.session.session import get_session
+
+pytestmark = [pytest.mark.ros, pytest.mark.slow]
+
+REPO = Path(__file__).resolve().parents[3]
+FIRST_LINE = re.compile(
+    r"\[INFO\] \[\d+\.\d+\] \[param_vel_node\]: Velocity parameter is: 0\.000000\n"
+)
+OTHER_NODE = "/some_other_node:\n  ros__parameters:\n    velocity: 0.9\n"
+MISSPELT = "/param_vel_node:\n  ros__parameters:\n    velocty: 0.3\n"
+RIGHT = "/param_vel_node:\n  ros__parameters:\n    velocity: 0.0\n"
+
+
+def _has_workspace() -> bool:
+    try:
+        return "param_vel" in ament.package_executables("parameter_tests", ament.workspace_env())
+    except PackageNotFoundError:
+        return False
+
+
+if not _has_workspace():
+    pytest.skip("rosject not built", allow_module_level=True)
+
+
+def _other_node_hint(path: Path) -> str:
+    return (
+        f"no top-level key of {path} ('/some_other_node') names a node this started "
+        "(/param_vel_node), so ROS applied nothing: use '/param_vel_node:' or '/**:'."
+    )
+
+
+def _misspelt_hint(path: Path) -> str:
+    return (
+        f"/param_vel_node does not declare 'velocty' (set in {path}), so ROS ignored it; "
+        "did you mean 'velocity'?"
+    )
+
+
+@pytest.fixture(scope="module")
+def lesson() -> Iterator[Lesson]:
+    session = get_session()
+    course_lesson = Lesson(9, session, load_course_settings())
+    yield course_lesson
+    course_lesson.stop_nodes()
+    session.close()
+
+
+@pytest.fixture
+def files(tmp_path: Path) -> dict[str, Path]:
+    found = {}
+    for name, text in (("other", OTHER_NODE), ("misspelt", MISSPELT), ("right", RIGHT)):
+        found[name] = tmp_path / f"{name}.yaml"
+        found[name].write_text(text, encoding="utf-8")
+    return found
+
+
+def test_magic_run_with_a_key_for_another_node(lesson: Lesson, files) -> None:  # type: ignore[no-untyped-def]
+    result = run_line(f"run parameter_tests param_vel --ros-args --params-file {files['other']}")
+    assert FIRST_LINE.fullmatch(result.output.text)  # the node's own line, as Jazzy prints it
+    assert result.hints == [_other_node_hint(files["other"])]
+    assert result.text == result.output.text + f"Hint: {result.hints[0]}\n"
+
+
+def test_magic_run_with_an_undeclared_parameter(lesson: Lesson, files) -> None:  # type: ignore[no-untyped-def]
+    result = run_line(
+        f"run parameter_tests param_vel --ros-args --params-file {files['misspelt']}"
+    )
+    assert FIRST_LINE.fullmatch(result.output.text)
+    assert result.hints == [_misspelt_hint(files["misspelt"])]
+
+
+def test_magic_run_with_a_right_file_has_no_hint(lesson: Lesson, files) -> None:  # type: ignore[no-untyped-def]
+    result = run_line(f"run parameter_tests param_vel --ros-args --params-file {files['right']}")
+    assert FIRST_LINE.fullmatch(result.output.text) and result.hints == []
+
+
+def test_lesson_run_with_a_key_for_another_node(lesson: Lesson, files) -> None:  # type: ignore[no-untyped-def]
+    lines = lesson.run(
+        "parameter_tests", "param_vel", "--ros-args", "--params-file", str(files["other"])
+    )
+    assert lines.hints == [_other_node_hint(files["other"])]
+    assert repr(lines).endswith(f"Velocity parameter is: 0.000000\nHint: {lines.hints[0]}\n")
+    assert 'class="course-hint"' in (lines._repr_html_() or "")
+
+
+def test_lesson_launch_with_an_undeclared_parameter(lesson: Lesson, files) -> None:  # type: ignore[no-untyped-def]
+    run = lesson.launch(
+        "parameter_tests", "test_parameters_file.launch.py", f"params_file:={files['misspelt']}"
+    )
+    try:
+        assert run.hints == [_misspelt_hint(files["misspelt"])]
+        assert repr(run).endswith(f"\nHint: {run.hints[0]}\n")
+    finally:
+        run.stop()
+    right = lesson.launch(
+        "parameter_tests", "test_parameters_file.launch.py", f"params_file:={files['right']}"
+    )
+    try:
+        assert right.hints == [] and right._repr_html_() is None
+    finally:
+        right.stop()
+
+
+def test_terminal_run_prints_the_node_lines_only(lesson: Lesson, files) -> None:  # type: ignore[no-untyped-def]
+    env = {**ament.workspace_env(), **lesson.session.env, "PYTHONPATH": str(REPO)}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "course_lib.ros2.command.cli", "run", "parameter_tests",
+         "param_vel", "--ros-args", "--params-file", str(files["other"])],
+        env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        start_new_session=True,
+    )  # fmt: skip
+    try:
+        time.sleep(4.0)
+        os.killpg(proc.pid, signal.SIGINT)  # Ctrl-C to the terminal's foreground group
+        stdout, stderr = proc.communicate(timeout=20)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+    assert "Velocity parameter is: 0.000000" in stderr
+    assert "Hint" not in stdout + stderr

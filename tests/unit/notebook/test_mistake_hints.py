@@ -1,0 +1,157 @@
+"""The pure parts of the notebooks' mistake hints: closest names, split values, types, files."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from course_lib.notebook import hints
+
+GOLDEN = Path(__file__).resolve().parents[2] / "golden" / "ros2"
+CASES = {c["case"]: c for c in json.loads((GOLDEN / "cases.json").read_text())}
+VEL_PARAMS = ["start_type_description_service", "use_sim_time", "velocity"]
+
+
+def _reason(case: str) -> str:
+    """Return the reason Jazzy gave in a golden `param set` failure."""
+    return CASES[case]["stderr"].removeprefix("Setting parameter failed: ").rstrip("\n")
+
+
+@pytest.mark.parametrize(
+    ("name", "known", "expected"),
+    [
+        ("velocty", VEL_PARAMS, "velocity"),
+        ("Velocity", VEL_PARAMS, "velocity"),
+        (
+            "/param_vel",
+            ["/camera_driver", "/param_vel_node", "/robot_state_publisher"],
+            "/param_vel_node",
+        ),
+        ("/param_vel_nod", ["/param_vel_node", "/param_types_node"], "/param_vel_node"),
+        ("speed", VEL_PARAMS, None),
+        ("velocity", VEL_PARAMS, None),  # the name itself is no suggestion
+        ("x", [], None),
+    ],
+)
+def test_closest_name(name: str, known: list[str], expected: str | None) -> None:
+    assert hints.closest(name, known) == expected
+
+
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    [
+        (["param", "set", "/param_types_node", "gains", "[1.0,", "2.0]"], "[1.0, 2.0]"),
+        (["param", "set", "/n", "names", "[a,", "b,", "c]", "--no-daemon"], "[a, b, c]"),
+        (["param", "set", "--timeout", "3", "/n", "gains", "1.0,", "2.0"], "1.0, 2.0"),
+        (["param", "set", "/param_types_node", "gains", "[1.0, 2.0]"], None),  # quoted: fine
+        (["param", "set", "/param_vel_node", "velocity", "-1.0"], None),  # a negative number
+        (["param", "get", "/n", "gains", "x"], None),
+        (["node", "list"], None),
+    ],
+)
+def test_split_value_is_found(argv: list[str], expected: str | None) -> None:
+    assert hints.joined_value(argv) == expected
+
+
+def test_split_hint_quotes_the_whole_value() -> None:
+    text = hints.split_hint("[1.0, 2.0]")
+    assert "split at its spaces into 2 arguments" in text
+    assert "'[1.0, 2.0]'" in text
+
+
+def test_integer_for_a_double_says_write_1_0() -> None:
+    reason = _reason("param_set_int_literal_on_double")
+    assert reason == "Wrong parameter type, expected 'Type.DOUBLE' got 'Type.INTEGER'"
+    text = hints.type_hint(reason, "velocity", "1")
+    assert text is not None and "write `1.0`" in text and "integer" in text
+
+
+@pytest.mark.parametrize(("value", "meant"), [("abc", "0.2"), ("0,5", "0.5"), ("'0.3'", "0.3")])
+def test_text_for_a_double_says_write_a_number(value: str, meant: str) -> None:
+    reason = _reason("param_set_wrong_type")
+    assert reason.endswith("got 'Type.STRING'")
+    text = hints.type_hint(reason, "velocity", value)
+    assert text is not None and f"write `{meant}`" in text and "read as text" in text
+
+
+def test_array_type_says_brackets_and_quotes() -> None:
+    reason = "Wrong parameter type, expected 'Type.DOUBLE_ARRAY' got 'Type.DOUBLE'"
+    text = hints.type_hint(reason, "gains", "1.0")
+    assert text is not None and "'[1.0, 2.0]'" in text and "in quotes" in text
+
+
+def test_other_reasons_have_no_type_hint() -> None:
+    assert hints.type_hint(_reason("param_set_read_only"), "frame_id", "odom") is None
+
+
+def test_params_files_after_ros_args_only() -> None:
+    argv = ["/x/param_vel", "--ros-args", "-r", "__node:=a", "--params-file", "my_files/p.yaml"]
+    assert hints.params_files(argv) == ["my_files/p.yaml"]
+    assert hints.params_files(["/x/param_vel", "--params-file", "p.yaml"]) == []
+
+
+@pytest.mark.parametrize(
+    ("key", "node", "expected"),
+    [
+        ("/param_vel_node", "/param_vel_node", True),
+        ("param_vel_node", "/param_vel_node", True),
+        ("/**", "/param_vel_node", True),
+        ("/*", "/param_vel_node", True),
+        ("/*", "/ns/param_vel_node", False),
+        ("/**/param_vel_node", "/ns/param_vel_node", True),
+        ("/some_other_node", "/param_vel_node", False),
+        ("/param_vel", "/param_vel_node", False),
+    ],
+)
+def test_key_matches_like_rcl(key: str, node: str, expected: bool) -> None:
+    assert hints.key_matches(key, node) is expected
+
+
+def test_file_sections_of_golden_files() -> None:
+    text = (GOLDEN / "params" / "vel_other_node.yaml").read_text()
+    assert hints.file_sections(text) == {"/some_other_node": ["velocity"]}
+    assert hints.file_sections("[1, 2]") == {}
+    assert hints.file_sections("a: [1") == {}  # malformed: ROS itself says so
+
+
+def test_a_key_naming_no_started_node_is_a_hint() -> None:
+    sections = {"/some_other_node": ["velocity"]}
+    (text,) = hints.section_hints("p.yaml", sections, {"/param_vel_node": VEL_PARAMS})
+    assert "'/some_other_node'" in text and "applied nothing" in text
+    assert "'/param_vel_node:'" in text
+
+
+def test_an_undeclared_parameter_in_a_file_is_a_hint() -> None:
+    sections = {"/**": ["velocty"], "/param_vel_node": ["velocity"]}
+    (text,) = hints.section_hints("p.yaml", sections, {"/param_vel_node": VEL_PARAMS})
+    assert "does not declare 'velocty'" in text and "did you mean 'velocity'?" in text
+
+
+def test_a_right_file_has_no_hint() -> None:
+    sections = {"/param_vel_node": ["velocity"]}
+    assert hints.section_hints("p.yaml", sections, {"/param_vel_node": VEL_PARAMS}) == []
+
+
+def test_started_nodes_counts_a_replaced_node_by_its_log() -> None:
+    lines = ["[INFO] [1.5] [param_vel_node]: Velocity parameter is: 0.300000"]
+    now = {"/param_vel_node", "/sim"}
+    assert hints.started_nodes(lines, {"/param_vel_node", "/sim"}, now) == ["/param_vel_node"]
+    assert hints.started_nodes([], {"/sim"}, {"/sim", "/new"}) == ["/new"]
+
+
+def test_hints_render_apart_as_text_and_html() -> None:
+    assert hints.as_text(["write `1.0`."]) == "Hint: write `1.0`.\n"
+    html = hints.as_html(["a <b>"])
+    assert 'class="course-hint"' in html and "a &lt;b&gt;" in html
+
+
+def test_disabled_hints_ask_nothing() -> None:
+    hints.set_enabled(False)
+    try:
+        argv = ["param", "set", "/param_vel_node", "velocity", "1"]
+        reason = CASES["param_set_int_literal_on_double"]["stderr"]
+        assert hints.command_hint(argv, "", reason, lambda: pytest.fail("asked")) is None
+    finally:
+        hints.set_enabled(True)
