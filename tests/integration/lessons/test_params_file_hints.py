@@ -27,8 +27,8 @@ from course_lib.session.session import get_session
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 REPO = Path(__file__).resolve().parents[3]
-FIRST_LINE = re.compile(
-    r"\[INFO\] \[\d+\.\d+\] \[param_vel_node\]: Velocity parameter is: 0\.000000\n"
+FIRST_LINE = re.compile(  # the node's first lines (up to 5), as Jazzy prints them
+    r"(\[INFO\] \[\d+\.\d+\] \[param_vel_node\]: Velocity parameter is: 0\.000000\n){1,5}"
 )
 OTHER_NODE = "/some_other_node:\n  ros__parameters:\n    velocity: 0.9\n"
 MISSPELT = "/param_vel_node:\n  ros__parameters:\n    velocty: 0.3\n"
