@@ -60,7 +60,11 @@ def test_line_magic_shows_prompt_and_exact_text(kernel) -> None:  # type: ignore
 
 def test_stderr_and_exit_code_are_shown_apart(kernel) -> None:  # type: ignore[no-untyped-def]
     (out,) = _execute(kernel, "%ros2 param get /param_vel_node no_such")
-    assert out["data"]["text/plain"] == "Parameter not set\n"
+    assert out["data"]["text/plain"] == (
+        "Parameter not set\n"  # Jazzy's words, then the course's hint on its own line
+        "Hint: there is no parameter 'no_such' and none with a close name; "
+        "`%ros2 param list /param_vel_node` lists them.\n"
+    )
     assert "color:#c62828" in out["data"]["text/html"]
     assert "[exit code 1]" in out["data"]["text/html"]
 
