@@ -113,8 +113,8 @@ def _missing_name_hint(what: str, name: str, known: Sequence[str], show: str) ->
     near = closest(name, known)
     if near is not None:
         return f"there is no {what} '{name}'; did you mean '{near}'? ({show} lists them)"
-    if not known:
-        return f"there is no {what} '{name}', and none is running: start it first."
+    if not known and what == "node":
+        return f"no node is running, so there is no '{name}': start the node first."
     return f"there is no {what} '{name}' and none with a close name; {show} lists them."
 
 

@@ -185,3 +185,23 @@ def test_kernel_display_carries_the_hint_apart() -> None:
     finally:
         kc.stop_channels()
         km.shutdown_kernel(now=False)
+
+
+def test_show_hints_false_turns_them_off(nodes, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """An instructor's `show_hints: false` leaves Jazzy's text alone in the notebooks too."""
+    from course_lib.lessons import start
+
+    course = (REPO / "config" / "course.yaml").read_text(encoding="utf-8")
+    assert "show_hints: true" in course
+    settings = tmp_path / "course.yaml"
+    settings.write_text(course.replace("show_hints: true", "show_hints: false"), encoding="utf-8")
+    command, jazzy, hint = MISTAKES["int_for_double"]
+    try:
+        start(4, settings_path=str(settings))  # (another lesson's start leaves nodes running)
+        assert run_line(command).text == jazzy
+        start(5)  # the shipped settings: hints on again
+        assert run_line(command).text == jazzy + hint
+    finally:
+        from course_lib.notebook.hints import set_enabled
+
+        set_enabled(True)

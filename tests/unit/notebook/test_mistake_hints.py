@@ -155,3 +155,10 @@ def test_disabled_hints_ask_nothing() -> None:
         assert hints.command_hint(argv, "", reason, lambda: pytest.fail("asked")) is None
     finally:
         hints.set_enabled(True)
+
+
+def test_a_missing_node_with_none_running_says_start_it() -> None:
+    text = hints._missing_name_hint("node", "/param_vel_node", [], "`%ros2 node list`")
+    assert text == "no node is running, so there is no '/param_vel_node': start the node first."
+    text = hints._missing_name_hint("parameter", "x", [], "`%ros2 param list /n`")
+    assert "none with a close name" in text
