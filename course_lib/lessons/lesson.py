@@ -181,8 +181,10 @@ class Lesson:
             return LogLines([f"$ {command}", first.text], notes)
         code = child.wait(timeout)
         last = [ln.text for ln in child.lines if ln.text.strip()][-1:]
+        hint = hints.crash_hint(last, files) if hints.enabled() else None
         return LogLines(
-            [f"$ {command}", *last, f"{RUN_PREFIX} Process exited with failure {code}"]
+            [f"$ {command}", *last, f"{RUN_PREFIX} Process exited with failure {code}"],
+            [hint] if hint else [],
         )
 
     def log_lines(self, name: str, count: int = 3, timeout: float = 10.0) -> LogLines:

@@ -28,6 +28,7 @@ __all__ = [
     "as_text",
     "closest",
     "command_hint",
+    "crash_hint",
     "enabled",
     "file_sections",
     "joined_value",
@@ -45,6 +46,10 @@ PARAMETER_NOT_SET = "Parameter not set"
 UNDECLARED = "Setting parameter failed: Invalid access to undeclared parameter(s)"
 WRONG_TYPE = re.compile(r"Wrong parameter type, expected 'Type\.(\w+)' got 'Type\.(\w+)'")
 UNABLE_TO_FIND = re.compile(r"Unable to find node '([^']*)'")
+FILE_TYPE_CRASH = re.compile(  # rclpy's words when a params file's value has the wrong type
+    r"InvalidParameterTypeException: Trying to set parameter '([^']+)' to '([^']*)' of type "
+    r"'(\w+)', expecting type '(\w+)'"
+)
 _VALUED_OPTIONS = {"--timeout", "--spin-time", "--filter", "--param-prefixes"}
 _WORDS = {
     "DOUBLE": "a double (a number with a decimal point)",
@@ -265,6 +270,21 @@ def started_nodes(log_lines: Iterable[str], before: set[str], now: set[str]) -> 
     by its log lines and running (a node that replaced one of the same name is not new)."""
     logged = {node_name_from_log(line) for line in log_lines} & now
     return sorted((now - before) | logged)
+
+
+def crash_hint(log_lines: Iterable[str], files: Sequence[str]) -> str | None:
+    """Return the hint for a node that a params file's value of the wrong type stopped at
+    start-up (rclpy's InvalidParameterTypeException in its last lines), or None."""
+    if not files:
+        return None
+    for line in log_lines:
+        found = FILE_TYPE_CRASH.search(line)
+        if found:
+            name, value, got, expected = found.groups()
+            reason = f"Wrong parameter type, expected 'Type.{expected}' got 'Type.{got}'"
+            hint = type_hint(reason, name, value)
+            return f"in {', '.join(files)}: {hint}" if hint else None
+    return None
 
 
 # --- live: the graph and the nodes' parameters ----------------------------------------------

@@ -73,7 +73,7 @@ def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) ->
     A node of the same executable that a lesson left running is stopped first, and so is any
     other lessons' node that drives the robot when this one does (a line says so, printed
     apart from the command's own output). A `--params-file` that sets nothing on the nodes it
-    started adds a hint to `notes`.
+    started, or whose value of the wrong type stopped the node, adds a hint to `notes`.
     """
     from ..lab.takeover import keep_one_driver, remember, take_over
     from ..ros2.api.nodes_and_params import client
@@ -86,6 +86,8 @@ def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) ->
     before = {n.full_name for n in client().node_names()} if files else set()
     child = get_session().spawn(cmd, name=name, cwd=ctx.cwd)
     child.wait_for_line(lambda _line: True, timeout=3.0)
+    if files and child.lines and child.lines[0].text.startswith("Traceback"):
+        child.wait(RUN_SEEN_WAIT_S)  # a bad value in the file: its last line names it
     remember(child, name)
     if child.alive:  # the next command (`%ros2 node list`) sees the new node, even under load
         client().wait_all_seen(timeout=RUN_SEEN_WAIT_S)
@@ -96,6 +98,9 @@ def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) ->
             notes += course_hints.params_file_hints(
                 files, _started(child, before), client, cwd=ctx.cwd
             )
+    elif files:
+        hint = course_hints.crash_hint((ln.text for ln in child.lines), files)
+        notes += [hint] if hint and course_hints.enabled() else []
     for line in child.lines[:5]:
         (ctx.console.err if line.stream == "stderr" else ctx.console.out)(line.text + "\n")
     return 0 if child.alive else int(child.returncode or 0)

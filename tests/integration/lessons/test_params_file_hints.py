@@ -33,6 +33,7 @@ FIRST_LINE = re.compile(  # the node's first lines (up to 5), as Jazzy prints th
 OTHER_NODE = "/some_other_node:\n  ros__parameters:\n    velocity: 0.9\n"
 MISSPELT = "/param_vel_node:\n  ros__parameters:\n    velocty: 0.3\n"
 RIGHT = "/param_vel_node:\n  ros__parameters:\n    velocity: 0.0\n"
+INTEGER = "/param_vel_node:\n  ros__parameters:\n    velocity: 1\n"
 
 
 def _has_workspace() -> bool:
@@ -72,7 +73,12 @@ def lesson() -> Iterator[Lesson]:
 @pytest.fixture
 def files(tmp_path: Path) -> dict[str, Path]:
     found = {}
-    for name, text in (("other", OTHER_NODE), ("misspelt", MISSPELT), ("right", RIGHT)):
+    for name, text in (
+        ("other", OTHER_NODE),
+        ("misspelt", MISSPELT),
+        ("right", RIGHT),
+        ("integer", INTEGER),
+    ):
         found[name] = tmp_path / f"{name}.yaml"
         found[name].write_text(text, encoding="utf-8")
     return found
@@ -105,6 +111,23 @@ def test_lesson_run_with_a_key_for_another_node(lesson: Lesson, files) -> None: 
     assert lines.hints == [_other_node_hint(files["other"])]
     assert repr(lines).endswith(f"Velocity parameter is: 0.000000\nHint: {lines.hints[0]}\n")
     assert 'class="course-hint"' in (lines._repr_html_() or "")
+
+
+def test_an_integer_for_a_double_in_the_file(lesson: Lesson, files) -> None:  # type: ignore[no-untyped-def]
+    path = files["integer"]
+    hint = (
+        f"in {path}: 'velocity' is a double (a number with a decimal point); `1` was read as "
+        "an integer and ROS does not convert it: write `1.0`."
+    )
+    lines = lesson.run("parameter_tests", "param_vel", "--ros-args", "--params-file", str(path))
+    assert lines.lines[1] == (  # rclpy's own last words, as a terminal shows them
+        "rclpy.exceptions.InvalidParameterTypeException: Trying to set parameter 'velocity' "
+        "to '1' of type 'INTEGER', expecting type 'DOUBLE': velocity"
+    )
+    assert lines.hints == [hint]
+    result = run_line(f"run parameter_tests param_vel --ros-args --params-file {path}")
+    assert result.output.text.startswith("Traceback (most recent call last):\n")
+    assert result.hints == [hint]
 
 
 def test_lesson_launch_with_an_undeclared_parameter(lesson: Lesson, files) -> None:  # type: ignore[no-untyped-def]

@@ -162,3 +162,16 @@ def test_a_missing_node_with_none_running_says_start_it() -> None:
     assert text == "no node is running, so there is no '/param_vel_node': start the node first."
     text = hints._missing_name_hint("parameter", "x", [], "`%ros2 param list /n`")
     assert "none with a close name" in text
+
+
+def test_a_file_value_of_the_wrong_type_is_named() -> None:
+    crash = CASES["node_params_file_wrong_type"]["stderr"].splitlines()
+    text = hints.crash_hint(crash, ["p.yaml"])
+    assert text is not None and text.startswith("in p.yaml: 'velocity' is a double")
+    assert "`fast` was read as text" in text
+    line = (
+        "rclpy.exceptions.InvalidParameterTypeException: Trying to set parameter 'velocity' "
+        "to '1' of type 'INTEGER', expecting type 'DOUBLE': velocity"
+    )
+    assert "write `1.0`" in (hints.crash_hint([line], ["p.yaml"]) or "")
+    assert hints.crash_hint([line], []) is None
