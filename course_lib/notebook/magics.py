@@ -57,6 +57,7 @@ class CommandResult:
 
 
 RUN_SEEN_WAIT_S = 3.0  # at most, after the node's first line, until this kernel has seen it
+FILE_RUN_WAIT_S = 10.0  # at most, with `--params-file`, for the first line or the crash
 
 
 def _started(child: Any, before: set[str]) -> list[str]:
@@ -85,9 +86,10 @@ def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) ->
     files = course_hints.params_files(cmd)
     before = {n.full_name for n in client().node_names()} if files else set()
     child = get_session().spawn(cmd, name=name, cwd=ctx.cwd)
-    child.wait_for_line(lambda _line: True, timeout=3.0)
+    # a params file's hint needs the node's first line (or its traceback): wait longer for it
+    child.wait_for_line(lambda _line: True, timeout=FILE_RUN_WAIT_S if files else 3.0)
     if files and child.lines and child.lines[0].text.startswith("Traceback"):
-        child.wait(RUN_SEEN_WAIT_S)  # a bad value in the file: its last line names it
+        child.wait(FILE_RUN_WAIT_S)  # a bad value in the file: its last line names it
     remember(child, name)
     if child.alive:  # the next command (`%ros2 node list`) sees the new node, even under load
         client().wait_all_seen(timeout=RUN_SEEN_WAIT_S)
