@@ -94,8 +94,11 @@ TEMPLATES: dict[str, dict[str, Template]] = {
 
 # notebook file name -> the settings its cells and outputs depend on
 _USED: dict[str, tuple[str, ...]] = {
-    "06_check_parameters.ipynb": ("show_hints",),  # a `%ros2` mistake's hint
+    # a mistake's hint under Jazzy's text (notebook/hints.py): a stopped node, a typo, a file
+    "02_key_points.ipynb": ("show_hints",),
+    "06_check_parameters.ipynb": ("show_hints",),
     "07_move_the_robot.ipynb": ("default_velocity_mps",),
+    "09_load_yaml_at_startup.ipynb": ("show_hints",),
     "11_beyond_the_tutorial.ipynb": (
         "default_velocity_mps",
         "show_hints",
