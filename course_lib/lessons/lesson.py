@@ -181,7 +181,7 @@ class Lesson:
             return LogLines([f"$ {command}", first.text], notes)
         code = child.wait(timeout)
         last = [ln.text for ln in child.lines if ln.text.strip()][-1:]
-        hint = hints.crash_hint(last, files) if hints.enabled() else None
+        hint = hints.crash_hint(last, files)
         return LogLines(
             [f"$ {command}", *last, f"{RUN_PREFIX} Process exited with failure {code}"],
             [hint] if hint else [],

@@ -20,6 +20,7 @@ from typing import Any
 import yaml
 
 from ..core.bounded_yaml import safe_load_bounded
+from ..core.errors import CourseError
 from ..lab.register import node_name_from_log
 
 __all__ = [
@@ -275,7 +276,7 @@ def started_nodes(log_lines: Iterable[str], before: set[str], now: set[str]) -> 
 def crash_hint(log_lines: Iterable[str], files: Sequence[str]) -> str | None:
     """Return the hint for a node that a params file's value of the wrong type stopped at
     start-up (rclpy's InvalidParameterTypeException in its last lines), or None."""
-    if not files:
+    if not _enabled or not files:
         return None
     for line in log_lines:
         found = FILE_TYPE_CRASH.search(line)
@@ -295,9 +296,11 @@ def _node_names(client: Any) -> list[str]:
 
 def _parameter_names(client: Any, node: str) -> list[str]:
     """Return the node's parameter names, or [] if it does not answer."""
+    from ..ros2.node.client import ServiceCallError  # rclpy: only once a command failed
+
     try:
         return sorted(client.list_parameters(node))
-    except Exception:  # a hint never turns a command into a failure
+    except (ServiceCallError, CourseError):  # a hint never turns a command into a failure
         return []
 
 

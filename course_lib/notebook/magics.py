@@ -102,7 +102,7 @@ def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) ->
             )
     elif files:
         hint = course_hints.crash_hint((ln.text for ln in child.lines), files)
-        notes += [hint] if hint and course_hints.enabled() else []
+        notes += [hint] if hint else []
     for line in child.lines[:5]:
         (ctx.console.err if line.stream == "stderr" else ctx.console.out)(line.text + "\n")
     return 0 if child.alive else int(child.returncode or 0)
