@@ -24,7 +24,10 @@ __all__ = ["CMD_VEL", "Publisher", "describe", "one_driver", "other_drivers", "p
 
 CMD_VEL = "/cmd_vel"
 _EPROSIMA = (0x01, 0x0F)
-_SEEN_WAIT_S = 1.0  # at most, until the new node's endpoints are discovered
+_SEEN_WAIT_S = 1.0  # at most, until a publisher started moments ago is discovered
+# At most, until a new node's /rosout publisher is discovered (LOCALHOST discovery takes up to
+# ~3 s on a busy host); the wait ends as soon as it is, so a quiet host waits ~0.1 s.
+_NEW_NODE_WAIT_S = 5.0
 _POLL_S = 0.02
 _DAEMON = "course_lib.ros2.command.daemon"
 
@@ -89,7 +92,7 @@ def _drives(client: Any, root: int) -> bool:
     Every rclpy node publishes /rosout: once that publisher of `root` is seen, so are the
     endpoints it made with it.
     """
-    deadline = time.monotonic() + _SEEN_WAIT_S
+    deadline = time.monotonic() + _NEW_NODE_WAIT_S
     while True:
         if any(p.runs_in(root) for p in publishers(client)):
             return True

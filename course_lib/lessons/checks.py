@@ -95,7 +95,13 @@ def _namesakes(node: str) -> tuple[bool, list[str]]:
         holders = [p for p in publishers(client()) if p.node == node and p.pids]
         return (listed, [describe(p) for p in holders]) if not listed or holders else None
 
-    return wait_until(settled, _GHOST_WAIT_S, interval=0.1) or (True, [])
+    found = wait_until(settled, _GHOST_WAIT_S, interval=0.1)
+    if found is not None:
+        return found
+    # Still listed, driving nothing: a ghost (every process that published its parameter events
+    # is gone; its discovery lease has not run out in this kernel yet) is not a running node.
+    events = [p for p in publishers(client(), "/parameter_events") if p.node == node]
+    return (False, []) if events and not any(p.pids for p in events) else (True, [])
 
 
 def _lesson_2(lesson: Any) -> list[Check]:
@@ -187,8 +193,16 @@ def other_drivers(lesson: Any, executable: str) -> list[str]:
     from ..lab.drivers import other_drivers as others_of
     from ..ros2.api.nodes_and_params import client
 
+    from ..lab.takeover import lessons_nodes
+
     own = _own_node(lesson, executable)
-    return [describe(p) for p in others_of(client(), own.pid if own and own.alive else None)]
+    found = others_of(client(), own.pid if own and own.alive else None)
+    records = lessons_nodes() if found else []
+    named = []
+    for publisher in found:
+        starters = [r.label for r in records if publisher.runs_in(int(r.tag.split(":")[0]))]
+        named.append(describe(publisher) + (f", started by {starters[0]}" if starters else ""))
+    return named
 
 
 def only_driver(lesson: Any, executable: str, node: str, others: list[str]) -> Check:
@@ -196,7 +210,8 @@ def only_driver(lesson: Any, executable: str, node: str, others: list[str]) -> C
     if others:
         verb = "publish" if len(others) > 1 else "publishes"
         hint = (
-            f"{', '.join(others)} also {verb} on /cmd_vel: stop it (Ctrl-C in its terminal), "
+            f"{', '.join(others)} also {verb} on /cmd_vel: stop it (Ctrl-C in its terminal; "
+            "a lesson's node: run this lesson's `%ros2 run` cell again, it stops the others), "
             "then run this cell again."
         )
     else:

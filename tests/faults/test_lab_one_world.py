@@ -92,7 +92,7 @@ def test_a_lessons_driver_stops_the_other_lessons_drivers_and_names_the_learners
         check = eleven.ok("print(lesson.self_check())").text
         found = re.search(r"✗ only your descriptor_vel_node drives .*\n\s+Try: (.*)", check)
         assert found, check
-        assert "also publishes on /cmd_vel: stop it (Ctrl-C in its terminal)" in found[1], check
+        assert "also publishes on /cmd_vel: stop it (Ctrl-C in its terminal;" in found[1], check
         # another lesson's driver started now leaves the terminal's publisher running, named
         again = eleven.ok(f"%ros2 run {DESCRIPTOR_VEL}")
         named = [line for line in again.text.splitlines() if "also publishes" in line]

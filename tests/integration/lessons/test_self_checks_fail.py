@@ -101,6 +101,24 @@ def test_lesson2_passes_when_its_node_is_gone_and_another_has_the_name(stop_node
                 os.killpg(other.pid, signal.SIGKILL)  # whatever of the job is left
 
 
+def test_lesson2_passes_when_only_a_ghost_of_its_node_is_listed(
+    stop_nodes, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A node killed without leaving the graph stays listed until its discovery lease runs out
+    (longer on a busy host than the check waits): no live process holds it, so it is gone."""
+    from course_lib.lessons import checks
+
+    lesson = start(2)
+    lesson.run("parameter_tests", "param_vel")
+    node = lesson.node("param_vel")
+    os.kill(node.pid, signal.SIGKILL)  # no goodbye on the graph: a ghost for the lease
+    node.wait(10)
+    monkeypatch.setattr(checks, "_GHOST_WAIT_S", 0.0)  # as if the lease outlived the wait
+    assert "/param_vel_node" in api.node_list(), "no ghost to test (the lease ran out)"
+    assert checks._namesakes("/param_vel_node") == (False, [])
+    assert lesson.self_check().checks[1].passed, lesson.self_check().text()
+
+
 def test_lesson3_fails_without_the_world() -> None:
     lesson = start(3)
     assert "the simulation is running" in _failed(lesson)
