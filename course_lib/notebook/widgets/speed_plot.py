@@ -50,6 +50,11 @@ class SpeedPlot:
             now = self.samples[-1][0] if self.samples else 0.0
             self.marks += [(now, f"velocity := {c.value:g}") for c in changed]
 
+    def snapshot(self) -> tuple[list[tuple[float, float]], list[tuple[float, str]]]:
+        """Return copies of the samples (sim time s, m/s) and marks (sim time s, label)."""
+        with self._lock:
+            return list(self.samples), list(self.marks)
+
     def png(self) -> bytes:
         """Return the plot so far as PNG bytes."""
         with self._lock:
