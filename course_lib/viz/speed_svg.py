@@ -36,7 +36,7 @@ def _ticks(low: float, high: float, count: int = 5) -> list[float]:
     first = -(-low // step) * step
     out, value = [], first
     while value <= high + 1e-9:
-        out.append(round(value, 6))
+        out.append(round(value, 6) + 0.0)  # + 0.0: never a '-0' label
         value += step
     return out
 

@@ -35,7 +35,7 @@ class PoseSample:
 class RunLog:
     """Log /odom (at most `fps` poses a simulated second, the last `max_s` seconds kept)."""
 
-    def __init__(self, session: Any, *, fps: int = 30, max_s: float = 600.0) -> None:
+    def __init__(self, session: Any, *, fps: int = 30, max_s: float = 300.0) -> None:
         from nav_msgs.msg import Odometry
         from sensor_msgs.msg import JointState
 

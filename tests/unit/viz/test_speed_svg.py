@@ -48,3 +48,8 @@ def test_labels_are_escaped_and_long_runs_thinned() -> None:
 def test_no_samples_still_draws_axes() -> None:
     svg = speed_svg([], [(1.0, "x")])
     assert svg.startswith("<svg") and "polyline" not in svg and 'class="mark"' not in svg
+
+
+def test_a_robot_rolling_back_slightly_shows_no_minus_zero() -> None:
+    svg = speed_svg([(0.0, -0.01), (1.0, 0.2)], [])
+    assert ">-0<" not in svg and ">0<" in svg
