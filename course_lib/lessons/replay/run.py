@@ -82,7 +82,7 @@ class LessonRun:
 
     def __init__(self, lesson: Any) -> None:
         from ...notebook.widgets.events import subscribe_parameter_events
-        from ...sim.view.run_log import RunLog
+        from ...sim.view.run_log import run_log
 
         self.number = lesson.number
         self.node = DRIVEN_NODES[lesson.number]
@@ -90,7 +90,8 @@ class LessonRun:
         stamp = time.strftime("%Y-%m-%d-%H%M%S", time.localtime(lesson.started_at))
         self.name = f"lesson{lesson.number:02d}-{stamp}"
         self.path: Path | None = None  # chosen at the first save, then kept
-        self.log = RunLog(lesson.session, fps=FPS)
+        self.log = run_log(lesson.session, fps=FPS)  # the session's: shared, never destroyed
+        self.since = self.log.mark()  # this lesson's run starts now
         self.marks: list[tuple[float, str]] = []
         self._lock = threading.Lock()
         self._stop_events = subscribe_parameter_events(lesson.session, self._on_event)
@@ -107,7 +108,7 @@ class LessonRun:
 
     def restart(self) -> None:
         """Start the run over (the robot was put back at its start pose)."""
-        self.log.restart()
+        self.since = self.log.mark()
         with self._lock:
             self.marks.clear()
 
@@ -133,7 +134,7 @@ class LessonRun:
         from ...viz.replay import write_replay
         from ...viz.speed_svg import speed_svg
 
-        run = self.log.run()
+        run = self.log.run(self.since)
         if not run:
             return None
         if plot is not None:
@@ -154,6 +155,5 @@ class LessonRun:
         return ReplayLink(path)
 
     def close(self) -> None:
-        """Stop recording; idempotent."""
+        """Stop listening to parameter events; idempotent (the session's run log stays)."""
         self._stop_events()
-        self.log.close()

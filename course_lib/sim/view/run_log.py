@@ -1,14 +1,18 @@
 """A lesson's run as data: the robot's poses, wheel angles and speed from /odom and
 /joint_states, bounded, model-free (the model is chosen when the replay is written).
 
-Unlike `Recorder` (which a learner starts and stops), a run log listens from the start of a
-lesson and keeps only the latest run: when simulated time goes back (the world restarted) or
-`restart()` is called (the robot was put back at its start pose), what came before is dropped.
+Unlike `Recorder` (which a learner starts and stops), a session has one run log
+(`run_log(session)`), listening from the first lesson that asks until the session closes:
+its subscriptions are never destroyed while the session spins (rclpy's executor can trip
+over a subscription destroyed from another thread). It keeps the latest run only: when
+simulated time goes back (the world restarted), what came before is dropped (`epoch` counts
+it); a lesson marks where its own run starts with `mark()` and reads it with `run(since)`.
 """
 
 from __future__ import annotations
 
 import threading
+import weakref
 from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -19,7 +23,7 @@ import mujoco
 from ...viz.replay import ReplayFrame
 from ..world.model import BASE_HEIGHT_M, WHEEL_JOINTS
 
-__all__ = ["PoseSample", "RunLog", "replay_frames"]
+__all__ = ["PoseLog", "PoseSample", "RunLog", "replay_frames", "run_log"]
 
 
 @dataclass(frozen=True)
@@ -32,18 +36,62 @@ class PoseSample:
     speed_mps: float
 
 
-class RunLog:
-    """Log /odom (at most `fps` poses a simulated second, the last `max_s` seconds kept)."""
+class PoseLog:
+    """The latest run's poses, at most `fps` a simulated second, the last `max_s` seconds."""
+
+    def __init__(self, *, fps: int = 30, max_s: float = 300.0) -> None:
+        self.fps = fps
+        self.samples: deque[PoseSample] = deque(maxlen=round(fps * max_s))
+        self.epoch = 0  # how many times simulated time went back (the world restarted)
+        self._lock = threading.Lock()
+
+    def add(self, sample: PoseSample) -> None:
+        """Keep `sample` (a world restart drops the run before it; a pose within 1/fps s of
+        the last one is skipped)."""
+        with self._lock:
+            if self.samples:
+                last = self.samples[-1].time_s
+                if sample.time_s < last:  # the world restarted: a new run
+                    self.samples.clear()
+                    self.epoch += 1
+                elif sample.time_s < last + 1.0 / self.fps - 1e-9:
+                    return
+            self.samples.append(sample)
+
+    @property
+    def latest_time_s(self) -> float | None:
+        """Return the simulated time of the latest pose, None before the first."""
+        with self._lock:
+            return self.samples[-1].time_s if self.samples else None
+
+    def mark(self) -> tuple[int, float | None]:
+        """Return where a run starting now begins (for `run(since=...)`)."""
+        with self._lock:
+            return self.epoch, (self.samples[-1].time_s if self.samples else None)
+
+    def run(self, since: tuple[int, float | None] | None = None) -> list[PoseSample]:
+        """Return the poses of the run that began at `since` (a `mark()`), oldest first.
+
+        After a world restart (a later epoch) every pose kept belongs to the new run.
+        """
+        with self._lock:
+            samples = list(self.samples)
+            epoch = self.epoch
+        if since is None or since[0] != epoch or since[1] is None:
+            return samples
+        return [s for s in samples if s.time_s > since[1]]
+
+
+class RunLog(PoseLog):
+    """A PoseLog fed by a session's /odom and /joint_states."""
 
     def __init__(self, session: Any, *, fps: int = 30, max_s: float = 300.0) -> None:
         from nav_msgs.msg import Odometry
         from sensor_msgs.msg import JointState
 
+        super().__init__(fps=fps, max_s=max_s)
         self.session = session
-        self.fps = fps
-        self.samples: deque[PoseSample] = deque(maxlen=round(fps * max_s))
         self._wheels = (0.0, 0.0)
-        self._lock = threading.Lock()
         node = session.node
         self._subs = [
             node.create_subscription(Odometry, "/odom", self._on_odom, 50),
@@ -52,45 +100,33 @@ class RunLog:
 
     def _on_joints(self, msg: Any) -> None:
         positions = dict(zip(msg.name, msg.position, strict=False))
-        wheels = (positions.get(WHEEL_JOINTS[0], 0.0), positions.get(WHEEL_JOINTS[1], 0.0))
-        with self._lock:
-            self._wheels = wheels
+        self._wheels = (positions.get(WHEEL_JOINTS[0], 0.0), positions.get(WHEEL_JOINTS[1], 0.0))
 
     def _on_odom(self, msg: Any) -> None:
         stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
         p, o = msg.pose.pose.position, msg.pose.pose.orientation
         pose = (p.x, p.y, p.z + BASE_HEIGHT_M, o.w, o.x, o.y, o.z)
-        with self._lock:
-            if self.samples:
-                last = self.samples[-1].time_s
-                if stamp < last:  # the world restarted: a new run
-                    self.samples.clear()
-                elif stamp < last + 1.0 / self.fps - 1e-9:
-                    return
-            self.samples.append(PoseSample(stamp, pose, self._wheels, msg.twist.twist.linear.x))
-
-    @property
-    def latest_time_s(self) -> float | None:
-        """Return the simulated time of the latest pose, None before the first."""
-        with self._lock:
-            return self.samples[-1].time_s if self.samples else None
-
-    def restart(self) -> None:
-        """Forget the run so far: the next pose starts a new one."""
-        with self._lock:
-            self.samples.clear()
-
-    def run(self) -> list[PoseSample]:
-        """Return the current run's poses, oldest first."""
-        with self._lock:
-            return list(self.samples)
+        self.add(PoseSample(stamp, pose, self._wheels, msg.twist.twist.linear.x))
 
     def close(self) -> None:
-        """Stop listening; idempotent."""
+        """Stop listening (the session is closing, or a test is done); idempotent."""
         if not self.session.closed:
             for sub in self._subs:
                 self.session.node.destroy_subscription(sub)
         self._subs = []
+
+
+_logs: weakref.WeakKeyDictionary[Any, RunLog] = weakref.WeakKeyDictionary()
+_logs_lock = threading.Lock()
+
+
+def run_log(session: Any, *, fps: int = 30) -> RunLog:
+    """Return `session`'s run log, subscribing the first time (at `fps`)."""
+    with _logs_lock:
+        log = _logs.get(session)
+        if log is None:
+            log = _logs[session] = RunLog(session, fps=fps)
+        return log
 
 
 def replay_frames(model: mujoco.MjModel, run: Sequence[PoseSample]) -> list[ReplayFrame]:

@@ -49,7 +49,7 @@ def test_the_run_is_saved_with_its_plot_and_marks(driven: tuple[Lesson, object])
     labels = [label for _, label in marks]
     assert labels == ["velocity := 0.2", "velocity := 0"], labels
     assert page.count('class="mark"') == 2 and "velocity := 0.2" in page
-    run = lesson.replay.log.run()
+    run = lesson.replay.log.run(lesson.replay.since)
     assert run[-1].pose[0] - run[0].pose[0] > 0.3, "the replay's robot did not drive"
     assert 'href="' not in page.split("<body>")[1].split("<script>")[0]
     assert took < 5.0, f"saving took {took:.1f} s"
@@ -79,10 +79,10 @@ def test_a_rerun_gets_its_own_file_and_old_ones_are_pruned(
         os.utime(old, (1_600_000_000 + n, 1_600_000_000 + n))
     (folder / "lesson11-2020-01-01-000000.html").write_text("other lesson")
     again = start(7)  # the learner runs the first cell again
-    assert lesson.replay.log._subs == []  # the previous run stopped listening
+    assert again.replay.log is lesson.replay.log  # one run log per session, kept
     again.replay.folder = folder
     again._world = lesson._world
-    lesson.current_world.wait_for_odom(lambda _r: again.replay.log.latest_time_s is not None)
+    lesson.current_world.wait_for_odom(lambda _r: bool(again.replay.log.run(again.replay.since)))
     second = again.save_replay()
     assert isinstance(second, ReplayLink), second
     assert second.path != first and first.exists() and NAME.fullmatch(second.path.name)
@@ -99,3 +99,10 @@ def test_the_link_is_relative_to_the_notebooks() -> None:
     link = ReplayLink(LEARNER_DIR / "replays" / "lesson07-2026-01-01-000000.html")
     assert link.href == "my_files/replays/lesson07-2026-01-01-000000.html"
     assert '<a href="my_files/replays/lesson07-2026-01-01-000000.html"' in link._repr_html_()
+
+
+def test_the_run_starts_where_the_lesson_put_the_robot(driven: tuple[Lesson, object]) -> None:
+    lesson, _ = driven
+    start = lesson.current_world.settings.start_pose
+    first = lesson.replay.log.run(lesson.replay.since)[0]
+    assert abs(first.pose[0] - start.x_m) < 0.05 and abs(first.pose[1] - start.y_m) < 0.05
