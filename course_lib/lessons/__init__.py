@@ -43,6 +43,7 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
     from ..lab.takeover import set_label
     from ..notebook.widgets.events import parameter_events
     from ..session.session import get_session
+    from .replay import start_recording
 
     if number not in TITLES:
         raise ValueError(f"there are lessons 1 to {max(TITLES)}, not {number}")
@@ -57,11 +58,14 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
     set_label(f"lesson {number}")
     previous = _lessons.get(number)
     lesson = Lesson(number, session, settings)
+    if previous is not None and previous.replay is not None:
+        previous.replay.close()
     if previous is not None and previous.session is session:
         previous.stop_nodes()
         lesson._world = previous._world
         if lesson._world is not None and lesson._world.alive:
             lesson._world.reset()
+    start_recording(lesson)  # a driving lesson records its run for its replay (replay/)
     _lessons[number] = lesson
     print(f"Lesson {number} · {lesson.title}")
     print("Ready: your own ROS 2 session is running and `%ros2` works in this notebook.")

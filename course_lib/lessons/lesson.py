@@ -76,6 +76,7 @@ class Lesson:
         self.started_at = time.time()  # files older than this come from an earlier run
         self.learner_dir = files.LEARNER_DIR  # notebooks/my_files/: the learner's, not git's
         self._world: Any = None
+        self.replay: Any = None  # a driving lesson's recording of its run (lessons/replay)
         self._lock = threading.Lock()
 
     def __repr__(self) -> str:
@@ -95,6 +96,8 @@ class Lesson:
         world = start_world(self.session, show=show, config=path)  # shows the 3D view
         world.reset()  # at rest too: the reset zeroes the wheels' command
         self._world = world
+        if self.replay is not None:
+            self.replay.restart()  # the replay shows the run from the start pose on
         whose = "your lab's robot, the one every notebook shows," if world.shared else "the robot"
         print(f"Put {whose} back at its start pose, standing still.")
         return world
@@ -275,7 +278,20 @@ class Lesson:
 
         result = SelfCheck.of(self.number, run_checks(self))
         report_progress(result)  # on a hub only; never raises, never waits
+        if self.replay is not None:
+            from .replay import show_replay
+
+            show_replay(self)  # a driving lesson's run, saved when its self-check ends
         return result
+
+    def save_replay(self) -> Any:
+        """Save this run's replay (3D motion, speed plot; plays offline) and return its link."""
+        from .replay import save_replay
+
+        link = save_replay(self)
+        if link is None:
+            return files.Text("No motion of the robot was recorded in this lesson yet.")
+        return link
 
     # --- lesson-specific tools (thin doors onto their modules) --------------------------------
     def where(self) -> files.Text:
@@ -307,6 +323,7 @@ class Lesson:
 
         plot = SpeedPlot(self.session)
         plot.show()
+        self.state["speed_plot"] = plot  # the replay draws the same samples and marks
         return plot
 
     def dry_run(self, package: str, file: str, *args: str) -> files.Text:

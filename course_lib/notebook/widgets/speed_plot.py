@@ -63,6 +63,11 @@ class SpeedPlot:
         found = [e.number for e in entries if e.stamp == stamp and e.name == "velocity"]
         return f"#{found[-1]} " if found else ""
 
+    def snapshot(self) -> tuple[list[tuple[float, float]], list[tuple[float, str]]]:
+        """Return copies of the samples (sim time s, m/s) and marks (sim time s, label)."""
+        with self._lock:
+            return list(self.samples), list(self.marks)
+
     def png(self) -> bytes:
         """Return the plot so far as PNG bytes."""
         with self._lock:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -55,3 +56,32 @@ def test_replay_title_is_escaped() -> None:
     sim = Simulation()
     page = replay_html(sim.model, plan_frames(sim, PLAN[:1]), title="</title><script>x</script>")
     assert "<title>&lt;/title&gt;&lt;script&gt;x&lt;/script&gt;</title>" in page
+
+
+def _with_plot() -> str:
+    from course_lib.viz.speed_svg import speed_svg
+
+    sim = Simulation()
+    frames = plan_frames(sim, PLAN)
+    samples = [(f.time_s, 0.2) for f in frames]
+    return replay_html(sim.model, frames, plot_svg=speed_svg(samples, [(0.5, "velocity := 0.2")]))
+
+
+def test_replay_with_speed_plot_is_byte_identical_and_loads_nothing() -> None:
+    page = _with_plot()
+    assert page == _with_plot()
+    assert page.count('class="mark"') == 1 and 'id="playhead"' in page
+    # the viewer script names the XHTML namespace (a string, never fetched); nothing else
+    assert set(re.findall(r"https?://[^\s\"'<>)]+", page)) <= {"http://www.w3.org/1999/xhtml"}
+    assert not re.search(r"""(src|href)\s*=\s*["']?(https?:|//)""", page)
+
+
+def test_a_reader_of_the_previous_page_never_sees_half_of_the_new_one(tmp_path: Path) -> None:
+    sim = Simulation()
+    path = write_replay(tmp_path / "run.html", sim.model, plan_frames(sim, PLAN[:1]))
+    before = path.read_bytes()
+    with path.open("rb") as reader:  # a browser still reading the page saved before
+        write_replay(path, sim.model, plan_frames(sim, PLAN))
+        assert reader.read() == before
+    assert path.read_bytes() != before
+    assert [p.name for p in tmp_path.iterdir()] == ["run.html"]  # no temporary file left
