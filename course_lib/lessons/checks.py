@@ -191,9 +191,8 @@ def other_drivers(lesson: Any, executable: str) -> list[str]:
     """Return who else publishes on /cmd_vel than this lesson's `executable` (names, pids)."""
     from ..lab.drivers import describe
     from ..lab.drivers import other_drivers as others_of
-    from ..ros2.api.nodes_and_params import client
-
     from ..lab.takeover import lessons_nodes
+    from ..ros2.api.nodes_and_params import client
 
     own = _own_node(lesson, executable)
     found = others_of(client(), own.pid if own and own.alive else None)
