@@ -101,13 +101,25 @@ class SpinningNode:
         self._thread.start()
 
     def _spin(self) -> None:
-        try:
-            self.executor.spin()
-        except Exception as err:
-            if self.closing or not self.context.ok():
-                return  # closing: spin ends with the context
-            self.spin_error = err
-            _log.error("%s ROS thread stopped", self._owner, exc_info=err)
+        from rclpy.exceptions import InvalidHandle
+
+        while True:
+            try:
+                self.executor.spin()
+                return
+            except InvalidHandle:
+                # A subscription or timer destroyed from another thread (a plot closed, a
+                # recorder stopped) while the executor waited on it: rclpy raises here; the
+                # next wait leaves it out, so spin on.
+                if self.closing or not self.context.ok():
+                    return
+                continue
+            except Exception as err:
+                if self.closing or not self.context.ok():
+                    return  # closing: spin ends with the context
+                self.spin_error = err
+                _log.error("%s ROS thread stopped", self._owner, exc_info=err)
+                return
 
     def wait_future(self, future: Any, timeout: float) -> Any:
         """Wait for an rclpy future completed by the spin thread; raise TimeoutError."""

@@ -89,3 +89,29 @@ def test_sim_bridge_thread_error_stops_the_world(
     finally:
         bridge.close()
         context.try_shutdown()
+
+
+def test_destroying_a_subscription_from_another_thread_never_stops_the_ros_thread() -> None:
+    """A plot closed or a recorder stopped in a cell while messages arrive: rclpy may raise
+    InvalidHandle in the spin thread (within seconds of such churn here); the session keeps
+    spinning."""
+    import time
+
+    from std_msgs.msg import String
+
+    session = Session()
+    try:
+        node = session.node
+        publisher = node.create_publisher(String, "/churn", 10)
+        node.create_timer(0.001, lambda: publisher.publish(String(data="x")))
+        ended = time.monotonic() + 15
+        while time.monotonic() < ended and session.spin_error is None:
+            subscriptions = [
+                node.create_subscription(String, "/churn", lambda _m: None, 10) for _ in range(4)
+            ]
+            time.sleep(0.001)
+            for subscription in subscriptions:
+                node.destroy_subscription(subscription)
+        assert session.spin_error is None, repr(session.spin_error)
+    finally:
+        session.close()
