@@ -9,6 +9,8 @@ kernel running lesson 7's cells (start(7), world, `%ros2 run parameter_tests par
 3D view through JupyterLab's proxy (the learner's browser tab). For N = 1, 2, 4, 8, ... all N
 learners drive at once; over a common window each kernel measures its simulation's real-time
 factor (the /odom stamps against wall time) and times evenly spread `%ros2 param get` magics.
+Each round prints every learner's figures and one learner's processes (CPU cores, PSS MiB);
+the end says which goal fails first (memory per learner included).
 The bench adds learners until a goal fails (--keep-going: until the real-time factor fails;
 at most --max), then stops everything it started, also on Ctrl-C or SIGTERM. A failed round
 is measured again (up to three times) when processes outside the bench used the CPU.
@@ -332,8 +334,7 @@ def main() -> None:
             rounds.append(min(attempts, key=lambda r: (len(r.failures), r.others_cores)))
             if len(attempts) > 1:
                 print(f"  N = {n}: kept the attempt with others at {rounds[-1].others_cores:.2f}")
-            if len(rounds) == 1:
-                print_processes(rounds[0])
+            print_processes(rounds[-1])
             if rounds[-1].failures and not (args.keep_going and rounds[-1].rtf_min >= RTF_GOAL):
                 break
     finally:

@@ -164,14 +164,16 @@ class Bridge:
         self._wake.set()
 
     def _publish(self, streams: list[str]) -> None:
-        if "imu" in streams or "scan" in streams:
-            self.sim.sense(scan="scan" in streams)
+        """Publish the streams due that someone reads: an unread message is never built."""
         if "camera" in streams:
             streams = [s for s in streams if s != "camera"]
             if self.camera is not None and self.camera.wanted:
                 self.camera.offer(self.sim.time, self.sim.data.qpos)
+        read = [name for name in streams if self.pub[name].get_subscription_count()]
+        if "imu" in read or "scan" in read:
+            self.sim.sense(scan="scan" in read)
         self.messages.restamp()
-        for name in streams:
+        for name in read:
             self.pub[name].publish(self._builders[name]())
 
     def _apply_inputs(self) -> None:
