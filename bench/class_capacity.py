@@ -5,8 +5,9 @@ Run: .venv/bin/python -m bench.class_capacity [--max 16] [--window 30] [--gets 2
 A learner is what a learner's server runs: a lab as `make lab` starts it (JupyterLab, the lab's
 machine service and ros2 daemon, the world: MuJoCo simulation and meshcat view) and a real
 kernel running lesson 7's cells (start(7), world, `%ros2 run parameter_tests param_vel`,
-`%ros2 param set ... velocity 0.2`, the drive), plus one websocket client per learner on the
-3D view through JupyterLab's proxy (the learner's browser tab). For N = 1, 2, 4, 8, ... all N
+the live speed plot, `%ros2 param set ... velocity 0.2`, the drive), plus one websocket client
+per learner on the 3D view through JupyterLab's proxy (the learner's browser tab). For N = 1,
+2, 4, 8, ... all N
 learners drive at once; over a common window each kernel measures its simulation's real-time
 factor (the /odom stamps against wall time) and times evenly spread `%ros2 param get` magics.
 Each round prints every learner's figures and one learner's processes (CPU cores, PSS MiB);
@@ -54,6 +55,7 @@ SETUP = [
     "from course_lib.lessons import start\n\nlesson = start(7)",
     "world = lesson.world()",
     "%ros2 run parameter_tests param_vel",
+    "plot = lesson.speed_plot()",  # the live speed plot stays on (the p99 goal is with it)
     "print('viewer port', world.viewer.port)",
 ]
 DRIVE = """\

@@ -8,7 +8,7 @@ from collections import deque
 from typing import Any
 
 from .events import changes_of, subscribe_parameter_events
-from .plotting import speed_png
+from .plotting import LiveSpeedFigure, speed_png
 
 __all__ = ["REFRESH_S", "SpeedPlot"]
 
@@ -32,6 +32,8 @@ class SpeedPlot:
         self._fresh = threading.Event()  # set by new samples or marks: the picture changed
         self.redraws = 0  # live redraws so far
         self._image: Any = None
+        self._figure: LiveSpeedFigure | None = None  # the live picture's, made by show()
+        self._drawing = threading.Lock()
         self._thread: threading.Thread | None = None
         node = session.node
         self._odom = node.create_subscription(Odometry, "/odom", self._on_odom, 10)
@@ -62,10 +64,15 @@ class SpeedPlot:
             self._fresh.set()
 
     def png(self) -> bytes:
-        """Return the plot so far as PNG bytes."""
+        """Return the plot so far as PNG bytes (the live figure's, once shown)."""
         with self._lock:
             samples, marks = list(self.samples), list(self.marks)
-        return speed_png([t for t, _ in samples], [v for _, v in samples], marks)
+        times, speeds = [t for t, _ in samples], [v for _, v in samples]
+        figure = self._figure
+        if figure is not None:
+            with self._drawing:  # one figure: the refresh thread and a cell may both draw
+                return figure.png(times, speeds, marks)
+        return speed_png(times, speeds, marks)
 
     def show(self) -> Any:
         """Display the live plot (redrawn when new samples came, at most once per REFRESH_S,
@@ -73,6 +80,7 @@ class SpeedPlot:
         import ipywidgets as widgets
         from IPython.display import display
 
+        self._figure = self._figure or LiveSpeedFigure()
         self._image = widgets.Image(value=self.png(), format="png")
         display(self._image)
         if self._thread is None:
@@ -97,6 +105,7 @@ class SpeedPlot:
         from IPython.display import Image
 
         self.close()
+        self._figure = None  # the picture kept in the notebook is speed_png's own
         return Image(data=self.png(), format="png")
 
     def close(self) -> None:

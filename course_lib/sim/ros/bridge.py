@@ -25,14 +25,11 @@ from ..world.physics import Simulation
 from .messages import Frames, MessageFactory
 from .nodes import create_nodes, node_specs
 from .tf import TfFactory, TFMessage
+from .topics import RESET_DONE_TOPIC, RESET_TOPIC
 from .urdf import robot_urdf
 
 __all__ = ["RESET_DONE_TOPIC", "RESET_TOPIC", "Bridge"]
 
-# Hidden from `ros2 topic list` (a leading underscore): World.reset() sends a number on
-# RESET_TOPIC and waits for the same number on RESET_DONE_TOPIC.
-RESET_TOPIC = "/_mujoco/reset"
-RESET_DONE_TOPIC = "/_mujoco/reset_done"
 _LATCHED = QoSProfile(
     depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL, reliability=ReliabilityPolicy.RELIABLE
 )
