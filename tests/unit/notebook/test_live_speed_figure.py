@@ -11,7 +11,6 @@ from PIL import Image
 
 from course_lib.notebook.widgets.plotting import LiveSpeedFigure, speed_png
 
-
 MARK, LINE = (0xC6, 0x28, 0x28), (0x15, 0x65, 0xC0)  # speed_png's colours
 
 
@@ -32,8 +31,9 @@ def test_the_kept_figure_draws_what_speed_png_draws() -> None:
     figure.png(times[:100], speeds[:100], [])
     figure.png(times[:900], speeds[:900], marks[:1])
     for n, shown in ((1200, marks[:1]), (1500, marks)):
-        live, still = _pixels(figure.png(times[:n], speeds[:n], shown)), _pixels(
-            speed_png(times[:n], speeds[:n], shown)
+        live, still = (
+            _pixels(figure.png(times[:n], speeds[:n], shown)),
+            _pixels(speed_png(times[:n], speeds[:n], shown)),
         )
         assert live.shape == still.shape
         differing = np.abs(live - still).max(axis=2) > 40
