@@ -126,7 +126,7 @@ def _label(pid: int) -> str:
         return "kernel"
     name = process_environ(pid).get(NAME_ENV)
     if name:
-        return name
+        return name.rsplit("-", 1)[0] if name.startswith("ros2-daemon-") else name  # one per lab
     return " ".join(Path(a).name for a in command.split()[:3])[:40]
 
 
