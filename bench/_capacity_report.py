@@ -18,6 +18,7 @@ import psutil
 
 RTF_GOAL = 0.95
 GET_GOAL_MS = 20.0
+MEMORY_GOAL_MIB = 250.0  # PSS per learner; reported beside the goals, never stops the run
 GOALS = ("real-time factor", "param get median", "param get p99")
 REPO = Path(__file__).resolve().parents[1]
 RECORD = REPO / "deploy" / "capacity.yaml"
@@ -121,6 +122,11 @@ def print_round(result: Round) -> None:
         f"{result.mem_used_mib / 1024:.1f} GiB in use"
     )
     print(f"  goals: {'; '.join(result.failures) if result.failures else 'all met'}")
+    memory = "met" if result.pss_mib <= MEMORY_GOAL_MIB else "fails"
+    print(
+        f"  memory: {result.pss_mib:.0f} MiB PSS per learner (goal <= {MEMORY_GOAL_MIB:g} MiB): "
+        f"{memory}"
+    )
 
 
 def print_processes(result: Round) -> None:
@@ -134,6 +140,26 @@ def print_processes(result: Round) -> None:
     print(f"  one learner's processes at N = {result.n} (mean):")
     for label, (cores, mib) in sorted(totals.items(), key=lambda kv: -kv[1][0]):
         print(f"    {cores:5.2f} cores {mib:6.0f} MiB  {label}")
+    print(
+        f"    {sum(c for c, _ in totals.values()):5.2f} cores "
+        f"{sum(m for _, m in totals.values()):6.0f} MiB  all"
+    )
+
+
+def first_failing(facts: dict[str, object]) -> str:
+    """Return which goal fails at the smallest N, memory included, as one sentence (pure)."""
+    firsts = dict(facts["first_failing"])  # type: ignore[call-overload]
+    rounds = facts["rounds"]
+    assert isinstance(rounds, list)
+    firsts["memory per learner"] = next(
+        (r["n"] for r in rounds if r["mib_per_learner"] > MEMORY_GOAL_MIB), None
+    )
+    failing = {goal: n for goal, n in firsts.items() if n is not None}
+    if not failing:
+        return f"no goal failed up to N = {rounds[-1]['n']}"
+    n = min(failing.values())
+    goals = " and ".join(goal for goal, at in failing.items() if at == n)
+    return f"{goals} at N = {n}"
 
 
 def requests(cpu_cores: float, memory_mib: float) -> dict[str, dict[str, object]]:
@@ -212,6 +238,7 @@ def print_class(facts: dict[str, object], load_before: tuple[float, ...], took: 
         "  first failing N by goal: "
         + ", ".join(f"{goal} {n or 'none'}" for goal, n in firsts.items())
     )
+    print(f"  first goal to fail: {first_failing(facts)}")
     print(
         f"  per learner at N = {facts['basis_n']}: {facts['cpu_cores_per_learner']} cores, "
         f"{facts['memory_mib_per_learner']} MiB PSS (alone: {facts['cpu_cores_alone']} cores, "

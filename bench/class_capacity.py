@@ -5,10 +5,13 @@ Run: .venv/bin/python -m bench.class_capacity [--max 16] [--window 30] [--gets 2
 A learner is what a learner's server runs: a lab as `make lab` starts it (JupyterLab, the lab's
 machine service and ros2 daemon, the world: MuJoCo simulation and meshcat view) and a real
 kernel running lesson 7's cells (start(7), world, `%ros2 run parameter_tests param_vel`,
-`%ros2 param set ... velocity 0.2`, the drive), plus one websocket client per learner on the
-3D view through JupyterLab's proxy (the learner's browser tab). For N = 1, 2, 4, 8, ... all N
+the live speed plot, `%ros2 param set ... velocity 0.2`, the drive), plus one websocket client
+per learner on the 3D view through JupyterLab's proxy (the learner's browser tab). For N = 1,
+2, 4, 8, ... all N
 learners drive at once; over a common window each kernel measures its simulation's real-time
 factor (the /odom stamps against wall time) and times evenly spread `%ros2 param get` magics.
+Each round prints every learner's figures and one learner's processes (CPU cores, PSS MiB);
+the end says which goal fails first (memory per learner included).
 The bench adds learners until a goal fails (--keep-going: until the real-time factor fails;
 at most --max), then stops everything it started, also on Ctrl-C or SIGTERM. A failed round
 is measured again (up to three times) when processes outside the bench used the CPU.
@@ -52,6 +55,7 @@ SETUP = [
     "from course_lib.lessons import start\n\nlesson = start(7)",
     "world = lesson.world()",
     "%ros2 run parameter_tests param_vel",
+    "plot = lesson.speed_plot()",  # the live speed plot stays on (the p99 goal is with it)
     "print('viewer port', world.viewer.port)",
 ]
 DRIVE = """\
@@ -122,7 +126,7 @@ def _label(pid: int) -> str:
         return "kernel"
     name = process_environ(pid).get(NAME_ENV)
     if name:
-        return name
+        return name.rsplit("-", 1)[0] if name.startswith("ros2-daemon-") else name  # one per lab
     return " ".join(Path(a).name for a in command.split()[:3])[:40]
 
 
@@ -332,8 +336,7 @@ def main() -> None:
             rounds.append(min(attempts, key=lambda r: (len(r.failures), r.others_cores)))
             if len(attempts) > 1:
                 print(f"  N = {n}: kept the attempt with others at {rounds[-1].others_cores:.2f}")
-            if len(rounds) == 1:
-                print_processes(rounds[0])
+            print_processes(rounds[-1])
             if rounds[-1].failures and not (args.keep_going and rounds[-1].rtf_min >= RTF_GOAL):
                 break
     finally:

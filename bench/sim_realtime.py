@@ -52,7 +52,7 @@ def main() -> None:
             world.drive(0.1, 0.3)
             time.sleep(2.0)  # past start-up
             share = cpu_share(world.process.pid, WINDOW_S)
-            label = "with 3D view streaming" if show else "no 3D view"
+            label = "3D view open, nobody watching" if show else "no 3D view"
             print(
                 f"sim process CPU at real time, {label}: {100 * share:5.1f}% of one core "
                 f"(goal < 25%; {WINDOW_S:g} s window)"

@@ -58,7 +58,7 @@ class World:
         from nav_msgs.msg import Odometry
         from std_msgs.msg import UInt32
 
-        from ..sim.ros.bridge import RESET_DONE_TOPIC, RESET_TOPIC
+        from ..sim.ros.topics import RESET_DONE_TOPIC, RESET_TOPIC
 
         self.session = session
         self.settings = settings

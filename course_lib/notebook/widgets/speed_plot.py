@@ -8,9 +8,12 @@ from collections import deque
 from typing import Any
 
 from .events import changes_of, subscribe_parameter_events
-from .plotting import speed_png
+from .plotting import LiveSpeedFigure, speed_png
 
-__all__ = ["SpeedPlot"]
+__all__ = ["REFRESH_S", "SpeedPlot"]
+
+REFRESH_S = 1.0  # the live plot redraws at most this often, and only after new samples
+_STILL_MPS = 1e-3  # samples of a robot standing still (speed ~0, unchanged) redraw nothing
 
 
 class SpeedPlot:
@@ -26,7 +29,11 @@ class SpeedPlot:
         self.time_jumps = 0  # simulated time going back: the world restarted, or two worlds
         self._lock = threading.Lock()
         self._stop = threading.Event()
+        self._fresh = threading.Event()  # set by new samples or marks: the picture changed
+        self.redraws = 0  # live redraws so far
         self._image: Any = None
+        self._figure: LiveSpeedFigure | None = None  # the live picture's, made by show()
+        self._drawing = threading.Lock()
         self._thread: threading.Thread | None = None
         node = session.node
         self._odom = node.create_subscription(Odometry, "/odom", self._on_odom, 10)
@@ -34,11 +41,15 @@ class SpeedPlot:
 
     def _on_odom(self, msg: Any) -> None:
         stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+        speed = msg.twist.twist.linear.x
         with self._lock:
-            if self.samples and stamp < self.samples[-1][0]:
+            last = self.samples[-1] if self.samples else None
+            if last and stamp < last[0]:
                 self.time_jumps += 1
                 self.marks.append((stamp, "simulated time went back"))
-            self.samples.append((stamp, msg.twist.twist.linear.x))
+            self.samples.append((stamp, speed))
+        if last is None or stamp < last[0] or max(abs(speed), abs(speed - last[1])) > _STILL_MPS:
+            self._fresh.set()  # a still robot's samples alone do not redraw the plot
 
     def _on_event(self, msg: Any) -> None:
         changed = [
@@ -52,6 +63,7 @@ class SpeedPlot:
         with self._lock:
             now = self.samples[-1][0] if self.samples else 0.0
             self.marks += [(now, f"{number}velocity := {c.value:g}") for c in changed]
+        self._fresh.set()
 
     def _history_number(self, msg: Any) -> str:
         """Return `#n ` where n numbers the same change in `lesson.history()` (the feed
@@ -69,16 +81,23 @@ class SpeedPlot:
             return list(self.samples), list(self.marks)
 
     def png(self) -> bytes:
-        """Return the plot so far as PNG bytes."""
+        """Return the plot so far as PNG bytes (the live figure's, once shown)."""
         with self._lock:
             samples, marks = list(self.samples), list(self.marks)
-        return speed_png([t for t, _ in samples], [v for _, v in samples], marks)
+        times, speeds = [t for t, _ in samples], [v for _, v in samples]
+        figure = self._figure
+        if figure is not None:
+            with self._drawing:  # one figure: the refresh thread and a cell may both draw
+                return figure.png(times, speeds, marks)
+        return speed_png(times, speeds, marks)
 
     def show(self) -> Any:
-        """Display the live plot (refreshed twice a second until `still()`)."""
+        """Display the live plot (redrawn when new samples came, at most once per REFRESH_S,
+        until `still()`)."""
         import ipywidgets as widgets
         from IPython.display import display
 
+        self._figure = self._figure or LiveSpeedFigure()
         self._image = widgets.Image(value=self.png(), format="png")
         display(self._image)
         if self._thread is None:
@@ -87,21 +106,29 @@ class SpeedPlot:
         return None
 
     def _refresh(self) -> None:
-        while not self._stop.wait(0.5):
-            if self.session.closed:
+        """Redraw after new samples, at most once per REFRESH_S; asleep while none come."""
+        while True:
+            self._fresh.wait()
+            if self._stop.is_set() or self.session.closed:
                 return
+            self._fresh.clear()
             self._image.value = self.png()
+            self.redraws += 1
+            if self._stop.wait(REFRESH_S):
+                return
 
     def still(self) -> Any:
         """Stop the live refresh and return the final plot as a picture."""
         from IPython.display import Image
 
         self.close()
+        self._figure = None  # the picture kept in the notebook is speed_png's own
         return Image(data=self.png(), format="png")
 
     def close(self) -> None:
         """Stop refreshing and listening; idempotent."""
         self._stop.set()
+        self._fresh.set()  # wakes the refresh thread, which then ends
         if self._thread is not None:
             self._thread.join(timeout=2.0)
         self._stop_events()

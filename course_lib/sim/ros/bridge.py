@@ -25,14 +25,11 @@ from ..world.physics import Simulation
 from .messages import Frames, MessageFactory
 from .nodes import create_nodes, node_specs
 from .tf import TfFactory, TFMessage
+from .topics import RESET_DONE_TOPIC, RESET_TOPIC
 from .urdf import robot_urdf
 
 __all__ = ["RESET_DONE_TOPIC", "RESET_TOPIC", "Bridge"]
 
-# Hidden from `ros2 topic list` (a leading underscore): World.reset() sends a number on
-# RESET_TOPIC and waits for the same number on RESET_DONE_TOPIC.
-RESET_TOPIC = "/_mujoco/reset"
-RESET_DONE_TOPIC = "/_mujoco/reset_done"
 _LATCHED = QoSProfile(
     depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL, reliability=ReliabilityPolicy.RELIABLE
 )
@@ -164,14 +161,16 @@ class Bridge:
         self._wake.set()
 
     def _publish(self, streams: list[str]) -> None:
-        if "imu" in streams or "scan" in streams:
-            self.sim.sense(scan="scan" in streams)
+        """Publish the streams due that someone reads: an unread message is never built."""
         if "camera" in streams:
             streams = [s for s in streams if s != "camera"]
             if self.camera is not None and self.camera.wanted:
                 self.camera.offer(self.sim.time, self.sim.data.qpos)
+        read = [name for name in streams if self.pub[name].get_subscription_count()]
+        if "imu" in read or "scan" in read:
+            self.sim.sense(scan="scan" in read)
         self.messages.restamp()
-        for name in streams:
+        for name in read:
             self.pub[name].publish(self._builders[name]())
 
     def _apply_inputs(self) -> None:

@@ -11,6 +11,7 @@ from typing import Any
 
 import meshcat.geometry as g
 import mujoco
+import numpy as np
 from meshcat.commands import SetObject, SetProperty, SetTransform
 from meshcat.path import Path
 
@@ -52,14 +53,16 @@ class TfView:
 
     def update_commands(self, data: mujoco.MjData) -> list[Any]:
         """Return odom -> base_footprint (the pose /odom reports) and the wheels' rotations."""
+        return [SetTransform(matrix, path) for path, matrix in self.update_poses(data)]
+
+    def update_poses(self, data: mujoco.MjData) -> list[tuple[Path, np.ndarray]]:
+        """Return the moving frames' paths and 4x4 transforms (what update_commands sends)."""
         at = self._base_qpos
         x, y = float(data.qpos[at]), float(data.qpos[at + 1])
         w, qx, qy, qz = (float(v) for v in data.qpos[at + 3 : at + 7])
         base = Transform((x, y, 0.0), (w, qx, qy, qz))
-        commands = [SetTransform(pose_matrix(base.xyz, base.quat), self.paths[BASE_FRAME])]
+        poses = [(self.paths[BASE_FRAME], pose_matrix(base.xyz, base.quat))]
         for joint, address in self._wheels:
             moved = joint_transform(joint, float(data.qpos[address]))
-            commands.append(
-                SetTransform(pose_matrix(moved.xyz, moved.quat), self.paths[joint.child])
-            )
-        return commands
+            poses.append((self.paths[joint.child], pose_matrix(moved.xyz, moved.quat)))
+        return poses

@@ -1,0 +1,90 @@
+"""Lesson 7's live speed plot redraws only after new /odom samples that show motion (a still
+robot's samples do not), at most once per REFRESH_S: a plot of a quiet world costs its kernel
+nothing (issue 23: one redraw takes ~0.1 s of CPU)."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterator
+
+import pytest
+from nav_msgs.msg import Odometry
+
+from course_lib.notebook.widgets import SpeedPlot
+from course_lib.notebook.widgets.speed_plot import REFRESH_S
+from course_lib.session.session import Session
+
+pytestmark = pytest.mark.ros
+
+
+@pytest.fixture
+def session() -> Iterator[Session]:
+    own = Session()
+    yield own
+    own.close()
+
+
+def _odom(stamp_s: float, speed: float) -> Odometry:
+    msg = Odometry()
+    msg.header.stamp.sec = int(stamp_s)
+    msg.header.stamp.nanosec = int((stamp_s % 1) * 1e9)
+    msg.twist.twist.linear.x = speed
+    return msg
+
+
+def _wait(predicate, timeout: float) -> bool:  # type: ignore[no-untyped-def]
+    deadline = time.monotonic() + timeout
+    while not predicate() and time.monotonic() < deadline:
+        time.sleep(0.05)
+    return bool(predicate())
+
+
+def _count_drawings(plot: SpeedPlot) -> list[int]:
+    """Count the plot's drawings (each redraw draws the whole picture once)."""
+    count = [0]
+    draw = plot.png
+
+    def counted() -> bytes:
+        count[0] += 1
+        return draw()
+
+    plot.png = counted  # type: ignore[method-assign]
+    return count
+
+
+def test_the_live_plot_redraws_only_after_new_samples(session: Session) -> None:
+    plot = SpeedPlot(session)
+    drawn = _count_drawings(plot)
+    publisher = session.node.create_publisher(Odometry, "/odom", 10)
+    try:
+        plot.show()
+        drawn[0] = 0  # show() draws the first picture itself
+        time.sleep(3.0)  # no /odom at all: nothing to redraw
+        assert drawn[0] == 0, f"{drawn[0]} redraws of a plot that got no sample"
+        assert _wait(lambda: publisher.get_subscription_count() > 0, 10.0)
+        publisher.publish(_odom(1.0, 0.1))
+        assert _wait(lambda: drawn[0] >= 1, 10.0), "a new sample was never drawn"
+        assert _wait(lambda: len(plot.samples) == 1, 5.0)
+        time.sleep(2 * REFRESH_S + 0.5)
+        quiet = drawn[0]
+        time.sleep(3.0)  # no new sample again
+        assert drawn[0] == quiet, "the plot redrew without new samples"
+        started = time.monotonic()
+        for i in range(100):  # a busy /odom: 50 samples a second for 2 s
+            publisher.publish(_odom(2.0 + i * 0.02, 0.2))
+            time.sleep(0.02)
+        elapsed = time.monotonic() - started
+        assert _wait(lambda: len(plot.samples) == 101, 5.0)
+        busy = drawn[0] - quiet
+        assert 1 <= busy <= elapsed / REFRESH_S + 2, f"{busy} redraws in {elapsed:.1f} s"
+        time.sleep(2 * REFRESH_S + 0.5)
+        moving = drawn[0]
+        for i in range(100):  # the robot stopped: samples keep coming, all at speed 0
+            publisher.publish(_odom(4.0 + i * 0.02, 0.0))
+            time.sleep(0.02)
+        assert _wait(lambda: len(plot.samples) == 201, 5.0)
+        time.sleep(2 * REFRESH_S + 0.5)
+        assert drawn[0] - moving <= 1, "a still robot's samples redrew the plot"
+    finally:
+        plot.close()
+        session.node.destroy_publisher(publisher)

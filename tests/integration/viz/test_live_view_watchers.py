@@ -1,0 +1,148 @@
+"""The live 3D view costs nothing unwatched (issue 23): LiveView sends a frame's poses only
+while a browser is connected to the meshcat server and only when the robot moved, all of a
+frame's poses in one websocket message; a browser that connects late gets the latest poses."""
+
+from __future__ import annotations
+
+import asyncio
+import struct
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Iterator
+
+import mujoco
+import pytest
+import umsgpack
+
+from course_lib.sim.view.live import LiveView
+from course_lib.sim.world.model import build_model
+from course_lib.tools.testing import independent_env
+
+pytestmark = [
+    # meshcat's Visualizer(window=...) is given our window; its own socket is never opened
+    pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning"),
+]
+
+PROBE_S = 0.1
+BASE = "/meshcat/mujoco/base_link"
+
+
+class Browser:
+    """A websocket client on the view (a browser tab's place): the messages it received."""
+
+    def __init__(self, port: int) -> None:
+        self.messages: list[bytes] = []
+        self.loop = asyncio.new_event_loop()
+        self.thread = threading.Thread(target=self.loop.run_forever, daemon=True)
+        self.thread.start()
+        self.connection = asyncio.run_coroutine_threadsafe(self._open(port), self.loop).result(10)
+
+    async def _open(self, port: int):  # type: ignore[no-untyped-def]
+        import tornado.websocket
+
+        connection = await tornado.websocket.websocket_connect(f"ws://127.0.0.1:{port}/")
+        self.loop.create_task(self._read(connection))
+        return connection
+
+    async def _read(self, connection) -> None:  # type: ignore[no-untyped-def]
+        while (message := await connection.read_message()) is not None:
+            self.messages.append(message)
+
+    def poses(self) -> list[dict]:
+        """Return the pose messages received (one per frame)."""
+        return [
+            m
+            for m in (umsgpack.unpackb(raw) for raw in list(self.messages))
+            if m.get("type") == "set_transforms"
+        ]
+
+    def close(self) -> None:
+        self.loop.call_soon_threadsafe(self.connection.close)
+        time.sleep(0.2)
+        self.loop.call_soon_threadsafe(self.loop.stop)
+        self.thread.join(5)
+
+
+@pytest.fixture
+def view() -> Iterator[tuple[LiveView, mujoco.MjModel, mujoco.MjData, int]]:
+    """A meshcat server (this test's child) and a LiveView drawing the robot on it."""
+    server = subprocess.Popen(
+        [sys.executable, "-m", "course_lib.viz.server"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+        env=independent_env(),
+    )
+    try:
+        assert server.stdout is not None
+        zmq_url = server.stdout.readline().strip().split("=", 1)[1]
+        web_url = server.stdout.readline().strip().split("=", 1)[1]
+        port = int(web_url.rsplit(":", 1)[1].split("/")[0])
+        model = build_model()
+        data = mujoco.MjData(model)
+        mujoco.mj_forward(model, data)
+        live = LiveView(zmq_url, model, data, probe_period_s=PROBE_S)
+        try:
+            yield live, model, data, port
+        finally:
+            live.close()
+    finally:
+        server.terminate()
+        server.wait(timeout=10)
+        if server.stdout is not None:
+            server.stdout.close()
+
+
+def _tick(live: LiveView, model, data, *, moving: bool, ticks: int = 25) -> None:  # type: ignore[no-untyped-def]
+    """Call update() at 50 Hz for `ticks` frames, moving the robot 1 cm a frame if `moving`."""
+    for _ in range(ticks):
+        if moving:
+            data.qpos[0] += 0.01
+            mujoco.mj_forward(model, data)
+        live.update(data)
+        time.sleep(0.02)
+
+
+def test_nothing_is_sent_while_no_browser_watches(view) -> None:  # type: ignore[no-untyped-def]
+    live, model, data, port = view
+    _tick(live, model, data, moving=True, ticks=50)
+    assert live.updates == 0, f"{live.updates} frames sent to a view nobody watches"
+    browser = Browser(port)  # connects late: gets the scene and the latest poses
+    try:
+        _tick(live, model, data, moving=False, ticks=25)  # the probe finds the browser
+        assert live.watchers == 1
+        time.sleep(0.3)
+        poses = browser.poses()
+        assert poses, "a browser that connected late never got the robot's pose"
+        matrices = poses[-1]["matrices"].data  # Float32Array: 16 floats per path, by column
+        at = poses[-1]["paths"].index(BASE)
+        x = struct.unpack_from("<f", matrices, (16 * at + 12) * 4)[0]
+        assert abs(x - data.xpos[model.body("base_link").id][0]) < 1e-3
+    finally:
+        browser.close()
+
+
+def test_a_watched_view_gets_one_message_per_moved_frame(view) -> None:  # type: ignore[no-untyped-def]
+    live, model, data, port = view
+    browser = Browser(port)
+    try:
+        _tick(live, model, data, moving=False, ticks=25)  # found; the first frame is sent
+        sent = live.updates
+        time.sleep(0.3)
+        before = len(browser.poses())
+        _tick(live, model, data, moving=False, ticks=25)
+        time.sleep(0.3)
+        assert live.updates == sent and len(browser.poses()) == before, "a still robot was sent"
+        received = len(browser.messages)
+        _tick(live, model, data, moving=True, ticks=20)
+        time.sleep(0.3)
+        frames = [umsgpack.unpackb(m) for m in browser.messages[received:]]
+        assert live.updates - sent == 20 and len(frames) == 20, (live.updates - sent, len(frames))
+        assert all(f["type"] == "set_transforms" for f in frames)  # one message per frame
+        assert all(BASE in f["paths"] and len(f["paths"]) > 3 for f in frames)
+    finally:
+        browser.close()
+    _tick(live, model, data, moving=True, ticks=25)  # the browser left: the view stops
+    assert live.watchers == 0
