@@ -33,6 +33,7 @@ class Verdict:
     passed: bool
     message: str
     hint: str = ""
+    kind: str = ""  # which mistake, for a failed skill exercise (lessons/skills/judge.py)
 
     def __repr__(self) -> str:
         return self.message + (f"\nHint: {self.hint}" if self.hint else "") + "\n"

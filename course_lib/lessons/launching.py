@@ -27,7 +27,7 @@ class LaunchRun:
         return Text(f"ros2 launch stopped (Ctrl-C), exit code {code}.")
 
 
-def _executables(package: str, file: str, *args: str) -> list[str]:
+def _executables(package: str, file: str | None, *args: str) -> list[str]:
     """Return the names of the executables the launch file starts (read, not run)."""
     from pathlib import Path
 
@@ -36,8 +36,10 @@ def _executables(package: str, file: str, *args: str) -> list[str]:
     return sorted({Path(plan.cmd[0]).name for plan in dry_run(package, file, *args).nodes})
 
 
-def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 4) -> LaunchRun:
-    """Start `ros2 launch package file args`; wait for the node's first log line."""
+def start_launch(
+    lesson: Any, package: str, file: str | None, *args: str, lines: int = 4
+) -> LaunchRun:
+    """Start `ros2 launch package file args` (or `ros2 launch path args`); wait for its node."""
     from ..lab.takeover import keep_one_driver, remember, take_over
     from ..launch import launch
     from ..ros2.api import nodes_and_params as api
@@ -48,7 +50,8 @@ def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 
         if taken:
             print(taken)
     handle = launch(package, file, *args, session=lesson.session)
-    command = " ".join(["ros2", "launch", package, file, *args])
+    lesson.state.setdefault("launches", []).append(handle)  # a failed one too: exercises judge it
+    command = " ".join(["ros2", "launch", package, *([file] if file else []), *args])
     if handle.wait_for(r"Velocity parameter is", timeout=15.0) is None:
         tail = "\n".join(handle.output[-8:])
         handle.stop()
@@ -61,7 +64,6 @@ def start_launch(lesson: Any, package: str, file: str, *args: str, lines: int = 
     driver = keep_one_driver(handle.child)
     if driver:
         print(driver)
-    lesson.state.setdefault("launches", []).append(handle)
     value = api.param_get("/param_vel_node", "velocity").value
     lesson.state.setdefault("launch_velocities", []).append(value)
     return LaunchRun(handle, command, handle.output[:lines])

@@ -7,7 +7,7 @@ from typing import Any
 
 from .files import Text
 
-__all__ = ["distance_m", "drive_report", "stop_report"]
+__all__ = ["distance_m", "drive_report", "steady_odom", "stop_report"]
 
 _STEADY_S = 0.2  # simulated seconds between the readings compared
 _SPEED_TOLERANCE = 0.002  # m/s
@@ -34,6 +34,11 @@ def _steady(world: Any, *, still_wait_s: float = 1.0) -> Any:
         if (steady and (moving or waited >= still_wait_s)) or waited >= 5.0:
             return reading
         previous = reading
+
+
+def steady_odom(world: Any) -> Any:
+    """Return the first /odom reading after the robot's speed stopped changing."""
+    return _steady(world)
 
 
 def drive_report(lesson: Any, sim_seconds: float) -> Text:
