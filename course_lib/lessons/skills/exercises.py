@@ -15,12 +15,16 @@ from pathlib import Path
 from typing import Any
 
 from ...core.errors import CourseError
-from ..checks import only_driver, other_drivers
-from ..files import Text
-from ..judging import Verdict
 from . import measure
 from .attempts import AttemptLog
-from .judge import DriveAttempt, StartupAttempt, StartupTask, judge_drive, judge_startup
+from .judge import (
+    DriveAttempt,
+    StartupAttempt,
+    StartupTask,
+    Verdict,
+    judge_drive,
+    judge_startup,
+)
 
 __all__ = [
     "DriveExercise",
@@ -67,12 +71,18 @@ class SkillExercise:
 
     def _others(self) -> list[str]:
         """Return who else than the learner's node publishes on /cmd_vel (names, pids)."""
-        return other_drivers(self.lesson, self.executable)
+        from ...lab.drivers import describe
+        from ...lab.drivers import other_drivers as others_of
+        from ...ros2.api.nodes_and_params import client
+
+        running = [c for c in self._children() if c.alive]
+        own = running[-1].pid if running else None
+        return [describe(p) for p in others_of(client(), own)]
 
     def _children(self) -> list[Any]:
         return [c for c in self.lesson.session.every_child if c.name == self.executable]
 
-    def arm(self) -> Text:
+    def arm(self) -> str:
         """Stop the robot, put it back at its start pose, record /odom from now on."""
         world = self.lesson.current_world
         self._stop_robot()
@@ -82,7 +92,7 @@ class SkillExercise:
         self.armed_at = time.time()
         tally = self.log.tally(self.name)
         done = f" (attempts so far: {tally.attempts})" if tally.attempts else ""
-        return Text(f"Robot at its start pose.{done} {self.task()}")
+        return f"Robot at its start pose.{done} {self.task()}\n"
 
     def check(self) -> Verdict:
         """Judge what happened since `arm()`; count the attempt; arm again for the next one."""
@@ -90,10 +100,14 @@ class SkillExercise:
             raise CourseError("The exercise is not armed.", hint="run its first cell again.")
         others = self._others()
         if others:  # not only the learner's node moved the robot: no verdict on it
-            hint = only_driver(self.lesson, self.executable, self.node.lstrip("/"), others).hint
+            verb = "publish" if len(others) > 1 else "publishes"
             self.arm()
             number = self.log.tally(self.name).attempts + 1
-            return Verdict(False, f"Not judged (attempt {number} is still yours): {hint}")
+            return Verdict(
+                False,
+                f"Not judged (attempt {number} is still yours): {', '.join(others)} also "
+                f"{verb} on /cmd_vel: stop it (Ctrl-C in its terminal), then try again.",
+            )
         number = self.log.tally(self.name).attempts + 1
         verdict = self._judge(number)
         self.log.add(self.name, verdict.passed)
@@ -128,13 +142,12 @@ class DriveExercise(SkillExercise):
 
     def _judge(self, number: int) -> Verdict:
         from ...ros2.api import nodes_and_params as api
-        from ..motion import distance_m, steady_odom
 
         s = self.settings
         world = self.lesson.current_world
-        before = steady_odom(world)
+        before = measure.steady_odom(world)
         after = world.wait_sim_time(before.time_s + s.time_s)
-        driven = distance_m(before.pose, after.pose)
+        driven = measure.distance_m(before.pose, after.pose)
         try:
             value = api.param_get(self.node, "velocity").value
         except Exception:
@@ -297,15 +310,6 @@ class LaunchExercise(_StartupExercise):
     def _children(self) -> list[Any]:
         return [h.child for h in self.lesson.state.get("launches", [])]
 
-    def _others(self) -> list[str]:
-        from ...lab.drivers import describe
-        from ...lab.drivers import other_drivers as others_of
-        from ...ros2.api.nodes_and_params import client
-
-        running = [c for c in self._children() if c.alive]
-        own = running[-1].pid if running else None
-        return [describe(p) for p in others_of(client(), own)]
-
     def _started(self) -> tuple[Any, list[Any], Path | None]:
         from ...launch.command.resolve import resolve_launch_file
 
@@ -352,7 +356,7 @@ class SavedPanelExercise(_StartupExercise):
     def task(self) -> str:
         v = self.lesson.settings.default_velocity_mps
         return (
-            f"Task: set travel_time to {self.target:g} with the panel and save; restart "
+            f"Task: set travel_time to {self.target:.1f} with the panel and save; restart "
             f"{self.node} so that it keeps it; then run the check: it sets velocity {v:g} and "
             "measures the trip."
         )
@@ -370,6 +374,8 @@ class SavedPanelExercise(_StartupExercise):
 
         v = self.lesson.settings.default_velocity_mps
         world = self.lesson.current_world
+        # the node's sim clock needs its first /clock message before a trip can be timed
+        self.trace.wait_until(t0 + self.settings.window_s, timeout=self.settings.window_s + 5)
         try:
             now = float(api.param_get(self.node, self.param).value)
         except Exception:
@@ -383,11 +389,9 @@ class SavedPanelExercise(_StartupExercise):
             world.wait_for_odom(
                 lambda r: abs(r.linear_mps) < 0.003 or r.time_s > moving.time_s + limit, 60.0
             )
-        from ..motion import distance_m
-
         end = world.odom()
         still = abs(end.linear_mps) < 0.003
-        driven = distance_m(start_pose, end.pose)
+        driven = measure.distance_m(start_pose, end.pose)
         trip = driven / v if still else 0.0
         text = (
             f"its trip at {v:g} m/s was {driven:.2f} m, {trip:.2f} s"

@@ -10,13 +10,12 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from ..judging import Verdict
-
 __all__ = [
     "HINTS",
     "DriveAttempt",
     "StartupAttempt",
     "StartupTask",
+    "Verdict",
     "hint_for",
     "judge_drive",
     "judge_startup",
@@ -104,6 +103,19 @@ _MESSAGES = {
     "after_window": "{node} started with {param} {first:g}, and got {target:g} only later.",
     "wrong_value": "{measured_text}, not {target:g} {unit} (± {tolerance:g}).",
 }
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """The checker's answer to one attempt."""
+
+    passed: bool
+    message: str
+    hint: str = ""
+    kind: str = ""  # which mistake, for a failed skill exercise
+
+    def __repr__(self) -> str:
+        return self.message + (f"\nHint: {self.hint}" if self.hint else "") + "\n"
 
 
 class _Words(dict):  # type: ignore[type-arg]
@@ -241,6 +253,6 @@ def judge_startup(
             f"{attempt.first:g}; {attempt.measured_text} (target {task.target:g} {task.unit} "
             f"± {task.tolerance:g}).",
         )
-    if abs(attempt.now - task.target) <= task.tolerance:
+    if not right_first and abs(attempt.now - task.target) <= task.tolerance:
         return _failed("after_window", number, words, show_hints)
     return _failed("wrong_value", number, words, show_hints)

@@ -10,6 +10,7 @@ running now.
 from __future__ import annotations
 
 import itertools
+import math
 import re
 import threading
 import time
@@ -23,15 +24,47 @@ import yaml
 __all__ = [
     "FileValue",
     "OdomTrace",
+    "distance_m",
     "first_tick",
     "launch_file_value",
     "node_holding",
     "params_file_of",
     "params_file_value",
+    "steady_odom",
 ]
 
+_STEADY_S = 0.2  # simulated seconds between the readings compared
+_SPEED_TOLERANCE = 0.002  # m/s
 _TICK = re.compile(r"Velocity parameter is: (-?[0-9.]+)")
 _MOVING_MPS = 0.01
+
+
+def distance_m(a: Any, b: Any) -> float:
+    """Return the straight-line distance between two poses (x, y in m)."""
+    return math.hypot(b.x - a.x, b.y - a.y)
+
+
+def _steady(world: Any, *, still_wait_s: float = 1.0) -> Any:
+    """Return the first /odom reading after the robot's speed stopped changing.
+
+    A speed change set just before (the node acts on its next 0.1 s tick) is let through
+    first, so the window that follows measures the drive, not the start; a robot standing
+    still gets `still_wait_s` of simulated time to start moving.
+    """
+    first = previous = world.odom()
+    while True:
+        reading = world.wait_sim_time(previous.time_s + _STEADY_S)
+        steady = abs(reading.linear_mps - previous.linear_mps) < _SPEED_TOLERANCE
+        moving = abs(reading.linear_mps) >= _SPEED_TOLERANCE
+        waited = reading.time_s - first.time_s
+        if (steady and (moving or waited >= still_wait_s)) or waited >= 5.0:
+            return reading
+        previous = reading
+
+
+def steady_odom(world: Any) -> Any:
+    """Return the first /odom reading after the robot's speed stopped changing."""
+    return _steady(world)
 
 
 class OdomTrace:
