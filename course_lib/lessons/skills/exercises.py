@@ -42,7 +42,8 @@ def _set(node: str, name: str, value: float) -> None:
     from ...ros2.api import nodes_and_params as api
 
     with contextlib.suppress(Exception):  # the node may be gone: then nothing drives
-        api.param_set(node, name, value)
+        if node in api.node_list():  # not waiting for a node that is not there
+            api.param_set(node, name, value)
 
 
 class SkillExercise:

@@ -83,6 +83,11 @@ def test_lesson7_drive(world_lesson: Lesson, stop_nodes: None) -> None:
     assert slow.message.startswith("Attempt 3") and "0.45 ÷ 3" in slow.hint  # the third level
     assert right.passed, right.message
     assert drive.log.tally("07 drive").attempts == 4 and drive.log.tally("07 drive").passed
+    # a restarted kernel (a new lesson, a new exercise) goes on counting from the file
+    again = DriveExercise(_lesson(7, world_lesson))
+    assert "(attempts so far: 4)" in again.arm()
+    assert api.param_set(NODE, "velocity", 0.1).successful
+    assert again.check().message.startswith("Attempt 5")
 
 
 def _params_file(lesson: Lesson, name: str, text: str) -> str:
