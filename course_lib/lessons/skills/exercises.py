@@ -42,8 +42,8 @@ def _set(node: str, name: str, value: float) -> None:
     from ...ros2.api import nodes_and_params as api
 
     with contextlib.suppress(Exception):  # the node may be gone: then nothing drives
-        if node in api.node_list():  # not waiting for a node that is not there
-            api.param_set(node, name, value)
+        if node in api.node_list() and api.param_get(node, name).value != value:
+            api.param_set(node, name, value)  # only a change: the speed plot marks each set
 
 
 class SkillExercise:
