@@ -174,6 +174,7 @@ class _StartupExercise(SkillExercise):
     needs_file = True
     param = "velocity"
     unit = "m/s"
+    first_line = "Velocity parameter is"  # what the node logs first
 
     @property
     def settings(self) -> Any:
@@ -229,7 +230,8 @@ class _StartupExercise(SkillExercise):
         show = self.lesson.settings.show_hints
         if child is None:
             return judge_startup(StartupAttempt(False), task, number=number, show_hints=show)
-        child.wait_for_line(lambda _l: not child.alive, 0.5)  # a crash at start-up shows now
+        # a node started moments ago: its first line (or its crash) first
+        child.wait_for_line(lambda line: self.first_line in line.text, 5.0)
         found = self._file_value(path) if path is not None else measure.FileValue()
         t0, first = self._start_time(child.lines)
         if t0 is None or not child.alive:  # it ended at start-up: say why, if its file says
@@ -338,6 +340,7 @@ class SavedPanelExercise(_StartupExercise):
     node = DESCRIPTOR_VEL
     param = "travel_time"
     unit = "s"
+    first_line = "Ready:"
 
     @property
     def target(self) -> float:
@@ -363,7 +366,7 @@ class SavedPanelExercise(_StartupExercise):
         )
 
     def _start_time(self, lines: list[Any]) -> tuple[float | None, float | None]:
-        ready = next((ln for ln in lines if "Ready:" in ln.text), None)
+        ready = next((ln for ln in lines if self.first_line in ln.text), None)
         return (ready.time, None) if ready else (None, None)
 
     def _file_value(self, path: Path) -> measure.FileValue:

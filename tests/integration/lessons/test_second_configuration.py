@@ -66,6 +66,7 @@ def test_a_second_configuration_carries_through_the_lessons(tmp_path: Path) -> N
     _write_config(config)
     notebooks = tmp_path / "learner" / "notebooks"
     notebooks.mkdir(parents=True)
+    (notebooks.parent / "rosject").symlink_to(REPO_ROOT / "rosject")  # lessons 9, 10: ../rosject
     copies = [shutil.copy(NOTEBOOKS_DIR / name, notebooks / name) for name in sorted(TEMPLATES)]
     env = independent_env(**{CONFIG_DIR_ENV: str(config), LEARNER_ROOT_ENV: str(notebooks.parent)})
     made = subprocess.run(
