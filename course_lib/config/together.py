@@ -196,6 +196,14 @@ def check_together(
             task.target_m + task.tolerance_m + _STOP_M,
             f"lesson 11's exercise ({task.target_m:g} m ± {task.tolerance_m:g} m)",
         ),
+        (  # the checker lets the speed settle (about 1 s) before its window
+            "drive_exercise.distance_m",
+            course.drive_exercise.distance_m * (1 + 1 / course.drive_exercise.time_s)
+            + course.drive_exercise.tolerance_m
+            + _STOP_M,
+            f"lesson 7's exercise ({course.drive_exercise.distance_m:g} m in "
+            f"{course.drive_exercise.time_s:g} s, after the speed settled)",
+        ),
     ]
     found = [_drive_problem(sim, key, needed, what, where) for key, needed, what in drives]
     return [p for p in found if p is not None]

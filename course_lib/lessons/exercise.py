@@ -11,10 +11,12 @@ from ..core.errors import CourseError
 from .checks import only_driver, other_drivers
 from .files import Text
 from .judging import TravelAttempt, Verdict, judge_travel
+from .skills.attempts import AttemptLog
 
 __all__ = ["TravelExercise"]
 
 NODE = "/descriptor_vel_node"
+NAME = "11 travel"  # in the attempt log and on the progress page
 
 
 class TravelExercise:
@@ -24,6 +26,7 @@ class TravelExercise:
         self.lesson = lesson
         self.settings = lesson.settings.travel_exercise
         self.attempts: list[Verdict] = []
+        self.log = AttemptLog(lesson.learner_dir)  # counts go on after a kernel restart
         self._start: Any = None
 
     def answer(self) -> Trip:
@@ -90,21 +93,24 @@ class TravelExercise:
             raise CourseError("The exercise is not armed.", hint="run `travel.arm()` first.")
         attempt = self._measure()
         others = other_drivers(self.lesson, "descriptor_vel")
+        number = self.log.tally(NAME).attempts + 1
         if others:  # not only the learner's answer moved the robot: no verdict on it
             self.arm()
             hint = only_driver(self.lesson, "descriptor_vel", NODE.lstrip("/"), others).hint
-            return Verdict(
-                False, f"Not judged (attempt {len(self.attempts) + 1} is still yours): {hint}"
-            )
+            return Verdict(False, f"Not judged (attempt {number} is still yours): {hint}")
         verdict = judge_travel(
             attempt,
             target_m=self.settings.target_m,
             tolerance_m=self.settings.tolerance_m,
-            number=len(self.attempts) + 1,
+            number=number,
             show_hints=self.lesson.settings.show_hints,
             answer=self.answer(),
         )
+        self.log.add(NAME, verdict.passed)
         self.attempts.append(verdict)
+        from .progress.client import report_attempt
+
+        report_attempt(self.lesson.number, NAME, number, verdict.passed)
         self.lesson.state["exercise_passed"] = any(v.passed for v in self.attempts)
         self.arm()
         return verdict

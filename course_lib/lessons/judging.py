@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..config.trip import Trip
+from .skills.judge import Verdict
 
 __all__ = ["HINTS", "TravelAttempt", "Verdict", "judge_travel"]
 
@@ -24,18 +25,6 @@ class TravelAttempt:
     moved: bool
     stopped: bool
     distance_m: float
-
-
-@dataclass(frozen=True)
-class Verdict:
-    """The checker's answer to one attempt."""
-
-    passed: bool
-    message: str
-    hint: str = ""
-
-    def __repr__(self) -> str:
-        return self.message + (f"\nHint: {self.hint}" if self.hint else "") + "\n"
 
 
 def judge_travel(

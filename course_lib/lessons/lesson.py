@@ -335,8 +335,11 @@ class Lesson:
         report.warnings = [w for w in report.warnings if not _RCLPY_OWN.search(w)]
         return files.Text(report.render())
 
-    def launch(self, package: str, file: str, *args: str) -> Any:
-        """Start `ros2 launch`; show its first lines (stop it with `.stop()`)."""
+    def launch(self, package: str, file: str | None = None, *args: str) -> Any:
+        """Start `ros2 launch package file` (or `ros2 launch path`); show its first lines.
+
+        Stop it with `.stop()`.
+        """
         from .launching import start_launch
 
         return start_launch(self, package, file, *args)
@@ -394,3 +397,26 @@ class Lesson:
         exercise = TravelExercise(self)
         print(exercise.arm(), end="")
         return exercise
+
+    def _skill(self, kind: str) -> Any:
+        from .skills import exercises
+
+        exercise = getattr(exercises, kind)(self)
+        print(exercise.arm(), end="")
+        return exercise
+
+    def drive_exercise(self) -> Any:
+        """Arm lesson 7's exercise (drive a distance in a time) and return its checker."""
+        return self._skill("DriveExercise")
+
+    def params_file_exercise(self) -> Any:
+        """Arm lesson 9's exercise (start at a speed from an edited dump) and return it."""
+        return self._skill("ParamsFileExercise")
+
+    def launch_exercise(self) -> Any:
+        """Arm lesson 10's exercise (a launch file that sets the speed) and return it."""
+        return self._skill("LaunchExercise")
+
+    def saved_panel_exercise(self) -> Any:
+        """Arm lesson 11's exercise (a saved panel value survives a restart) and return it."""
+        return self._skill("SavedPanelExercise")

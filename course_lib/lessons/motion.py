@@ -2,38 +2,12 @@
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from .files import Text
+from .skills.measure import distance_m, steady_odom
 
-__all__ = ["distance_m", "drive_report", "stop_report"]
-
-_STEADY_S = 0.2  # simulated seconds between the readings compared
-_SPEED_TOLERANCE = 0.002  # m/s
-
-
-def distance_m(a: Any, b: Any) -> float:
-    """Return the straight-line distance between two poses (x, y in m)."""
-    return math.hypot(b.x - a.x, b.y - a.y)
-
-
-def _steady(world: Any, *, still_wait_s: float = 1.0) -> Any:
-    """Return the first /odom reading after the robot's speed stopped changing.
-
-    A speed change set just before (the node acts on its next 0.1 s tick) is let through
-    first, so the window that follows measures the drive, not the start; a robot standing
-    still gets `still_wait_s` of simulated time to start moving.
-    """
-    first = previous = world.odom()
-    while True:
-        reading = world.wait_sim_time(previous.time_s + _STEADY_S)
-        steady = abs(reading.linear_mps - previous.linear_mps) < _SPEED_TOLERANCE
-        moving = abs(reading.linear_mps) >= _SPEED_TOLERANCE
-        waited = reading.time_s - first.time_s
-        if (steady and (moving or waited >= still_wait_s)) or waited >= 5.0:
-            return reading
-        previous = reading
+__all__ = ["distance_m", "drive_report", "steady_odom", "stop_report"]
 
 
 def drive_report(lesson: Any, sim_seconds: float) -> Text:
@@ -43,7 +17,7 @@ def drive_report(lesson: Any, sim_seconds: float) -> Text:
     before (another lesson's drive, an earlier run) can make them look right.
     """
     world = lesson.current_world
-    before = _steady(world)
+    before = steady_odom(world)
     after = world.wait_sim_time(before.time_s + sim_seconds)
     driven = distance_m(before.pose, after.pose)
     lesson.state["top_speed"] = max(lesson.state.get("top_speed", 0.0), after.linear_mps)

@@ -2,6 +2,20 @@
 
 from __future__ import annotations
 
-from ..config.course import CourseSettings, TravelExercise, course_yaml, load_course_settings
+from ..config.course import (
+    CourseSettings,
+    DriveExercise,
+    StartupExercises,
+    TravelExercise,
+    course_yaml,
+    load_course_settings,
+)
 
-__all__ = ["CourseSettings", "TravelExercise", "course_yaml", "load_course_settings"]
+__all__ = [
+    "CourseSettings",
+    "DriveExercise",
+    "StartupExercises",
+    "TravelExercise",
+    "course_yaml",
+    "load_course_settings",
+]

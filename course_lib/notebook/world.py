@@ -111,6 +111,15 @@ class World:
                 hint="start it again with start_world().",
             )
 
+    def add_odom_listener(self, listener: Any) -> None:
+        """Call `listener(OdomReading)` on every /odom message from now on (an exercise's log)."""
+        self._listeners.append(lambda msg: listener(_reading(msg)))
+        self._listeners[-1].owner = listener  # type: ignore[attr-defined]
+
+    def remove_odom_listener(self, listener: Any) -> None:
+        """Stop calling a listener given to `add_odom_listener`."""
+        self._listeners = [f for f in self._listeners if getattr(f, "owner", None) is not listener]
+
     def wait_for_odom(self, predicate: Any = None, timeout: float = 10.0) -> OdomReading:
         """Wait for an /odom reading (matching `predicate`, if given); raise TimeoutError."""
         deadline = time.monotonic() + timeout

@@ -192,6 +192,12 @@ class Session:
         with self._lock:
             return [c for c in self._children if c.alive]
 
+    @property
+    def every_child(self) -> list[ChildProcess]:
+        """Return every child started so far, ended or not (an exercise judges one that ended)."""
+        with self._lock:
+            return list(self._children)
+
     def _check_open(self) -> None:
         if self._closed:
             raise SessionClosedError()

@@ -215,3 +215,27 @@ def test_records_survive_a_restart_of_the_hub(hub: ClassHub, admin: requests.Ses
     page = again.get(hub.url + PAGE, timeout=10)  # the OAuth login to the new service
     assert rows_of(page.text)["bob"][8][1] == "passed", page.text
     assert records(again, hub) == before, f"records changed across a restart ({restarted:.1f} s)"
+
+
+def test_exercise_pass_rates_and_median_attempts_from_two_learners(
+    hub: ClassHub, admin: requests.Session
+) -> None:
+    """Each attempt goes as a skill exercise's check sends it, with the learner's own token."""
+    envs = servers(hub)
+    attempts = {"alice": [False, True], "bob": [False, False, False, True]}
+    for user, verdicts in attempts.items():
+        for number, passed in enumerate(verdicts, 1):
+            thread = progress_report.report_attempt(
+                9, "09 params file", number, passed, envs[user]
+            )
+            assert thread is not None
+            thread.join(timeout=10)
+    progress_report.report_attempt(10, "10 launch file", 1, False, envs["bob"]).join(10)
+    answer = admin.get(f"{hub.url}{PAGE}api/records", timeout=10).json()["exercises"]
+    stats = {s["exercise"]: s for s in answer}
+    assert stats["09 params file"]["pass_rate"] == 1.0
+    assert stats["09 params file"]["median_attempts"] == 3.0  # 2 and 4
+    assert (stats["10 launch file"]["tried"], stats["10 launch file"]["passed"]) == (1, 0)
+    page = admin.get(hub.url + PAGE, timeout=10).text
+    assert "09 params file" in page and "100 %" in page and ">3<" in page
+    assert "0 of 1" in page

@@ -85,8 +85,13 @@ class PageHandler(_HubHandler):
         except HubUsersError as error:
             users, note = [], f"Only learners with records are shown: {error}."
         learners = [u.name for u in users if not u.admin]
+        store = self.context.store
         html = render_page(
-            learners, self.context.store.states(), titles=self.context.titles, note=note
+            learners,
+            store.states(),
+            titles=self.context.titles,
+            note=note,
+            exercises=store.exercise_stats(),
         )
         self.set_header("Cache-Control", "no-store")
         self.set_header("Content-Type", "text/html; charset=utf-8")
@@ -128,13 +133,22 @@ class RecordsHandler(_HubHandler):
         except StoreError as error:
             raise Refusal(500, str(error)) from None
         self.set_status(201)
-        self.finish({"stored": {"user": record.user, "lesson": record.lesson}})
+        stored: dict[str, object] = {"user": record.user, "lesson": record.lesson}
+        if record.exercise:
+            stored.update(exercise=record.exercise, attempt=record.attempt)
+        self.finish({"stored": stored})
 
     async def get(self) -> None:
         if self.current_user is None:
             self._owner()  # says 401 or 403
         self._admin()
-        self.finish({"records": [s.as_json() for s in self.context.store.states()]})
+        store = self.context.store
+        self.finish(
+            {
+                "records": [s.as_json() for s in store.states()],
+                "exercises": [s.as_json() for s in store.exercise_stats()],
+            }
+        )
 
     def write_error(self, status_code: int, **kwargs: Any) -> None:
         self.set_header("Content-Type", "application/json")

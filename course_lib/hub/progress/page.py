@@ -7,7 +7,7 @@ from datetime import datetime
 from html import escape
 
 from . import LESSONS
-from .store import LessonState
+from .store import ExerciseStats, LessonState
 
 __all__ = ["render_page", "rows_of"]
 
@@ -43,6 +43,24 @@ def _cell(state: LessonState | None) -> str:
     )
 
 
+def _exercises_table(stats: Iterable[ExerciseStats]) -> str:
+    rows = "".join(
+        f'<tr><td>{s.lesson}</td><td class="exercise">{escape(s.exercise)}</td>'
+        f'<td class="rate">{s.pass_rate * 100:.0f} %</td><td>{s.passed} of {s.tried}</td>'
+        f'<td class="median">{"–" if s.median_attempts is None else f"{s.median_attempts:g}"}'
+        "</td></tr>"
+        for s in stats
+    )
+    if not rows:
+        return "<h2>Exercises</h2><p>No exercise attempts yet.</p>"
+    return (
+        "<h2>Exercises</h2><p>Each exercise's check across the class: the share of learners "
+        "who tried it and passed, and the median number of attempts it took them.</p>"
+        "<table><thead><tr><th>Lesson</th><th>Exercise</th><th>Pass rate</th><th>Passed</th>"
+        f"<th>Median attempts to pass</th></tr></thead><tbody>{rows}</tbody></table>"
+    )
+
+
 def rows_of(learners: Iterable[str], states: Iterable[LessonState]) -> list[str]:
     """Return the page's row names: every learner, plus anyone with records, sorted."""
     return sorted(set(learners) | {s.user for s in states})
@@ -54,6 +72,7 @@ def render_page(
     *,
     titles: Mapping[int, str],
     note: str = "",
+    exercises: Iterable[ExerciseStats] = (),
 ) -> str:
     """Return the page: one row per learner, one column per lesson, a note above if any."""
     states = list(states)
@@ -82,5 +101,6 @@ def render_page(
         "The page refreshes every 30 seconds.</p>"
         f"{note_html}"
         f"<table><thead><tr><th>Learner</th>{head}</tr></thead><tbody>{body}</tbody></table>"
+        f"{_exercises_table(exercises)}"
         "</body></html>\n"
     )

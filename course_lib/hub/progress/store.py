@@ -17,7 +17,7 @@ from pathlib import Path
 
 from ...lessons.progress.record import Record
 
-__all__ = ["LessonState", "ProgressStore", "StoreError"]
+__all__ = ["ExerciseStats", "LessonState", "ProgressStore", "StoreError"]
 
 _SCHEMA = """
 CREATE TABLE IF NOT EXISTS progress (
@@ -29,6 +29,28 @@ CREATE TABLE IF NOT EXISTS progress (
     failed_at TEXT,
     PRIMARY KEY (user, lesson)
 )
+"""
+_ATTEMPTS_SCHEMA = """
+CREATE TABLE IF NOT EXISTS attempts (
+    user TEXT NOT NULL,
+    exercise TEXT NOT NULL,
+    lesson INTEGER NOT NULL,
+    attempts INTEGER NOT NULL,
+    passed_at_attempt INTEGER,
+    PRIMARY KEY (user, exercise)
+)
+"""
+# a learner's attempts only grow (a retried post, a second kernel's count, never lower it);
+# the attempt that first passed is kept
+_UPSERT_ATTEMPT = """
+INSERT INTO attempts (user, exercise, lesson, attempts, passed_at_attempt) VALUES (?, ?, ?, ?, ?)
+ON CONFLICT (user, exercise) DO UPDATE
+SET attempts = MAX(attempts, excluded.attempts), lesson = excluded.lesson,
+    passed_at_attempt = COALESCE(
+        MIN(passed_at_attempt, excluded.passed_at_attempt),
+        passed_at_attempt,
+        excluded.passed_at_attempt
+    )
 """
 _UPSERT_PASSED = """
 INSERT INTO progress (user, lesson, passed, passed_at) VALUES (?, ?, 1, ?)
@@ -68,6 +90,31 @@ class LessonState:
         }
 
 
+@dataclass(frozen=True)
+class ExerciseStats:
+    """One exercise across the class: who tried, who passed, the median attempts to pass."""
+
+    exercise: str
+    lesson: int
+    tried: int
+    passed: int
+    median_attempts: float | None  # among those who passed; None when nobody has yet
+
+    @property
+    def pass_rate(self) -> float:
+        return self.passed / self.tried if self.tried else 0.0
+
+    def as_json(self) -> dict[str, object]:
+        return {
+            "exercise": self.exercise,
+            "lesson": self.lesson,
+            "tried": self.tried,
+            "passed": self.passed,
+            "pass_rate": self.pass_rate,
+            "median_attempts": self.median_attempts,
+        }
+
+
 def _time(text: str | None) -> datetime | None:
     return datetime.fromisoformat(text) if text else None
 
@@ -82,6 +129,7 @@ class ProgressStore:
             self._db = sqlite3.connect(self.path, isolation_level=None)
             self._db.execute("PRAGMA journal_mode=WAL")
             self._db.execute(_SCHEMA)
+            self._db.execute(_ATTEMPTS_SCHEMA)
         except (OSError, sqlite3.Error) as error:
             raise StoreError(
                 f"cannot open the progress database {self.path}: {error}. "
@@ -98,7 +146,11 @@ class ProgressStore:
         key = (record.user, record.lesson)
         try:
             with self._transaction():
-                if record.passed:
+                if record.exercise:
+                    passed_at = record.attempt if record.passed else None
+                    row = (record.user, record.exercise, record.lesson, record.attempt, passed_at)
+                    self._db.execute(_UPSERT_ATTEMPT, row)
+                elif record.passed:
                     self._db.execute(_UPSERT_PASSED, (*key, stamp))
                 else:
                     self._db.execute(_UPSERT_FAILED, (*key, record.failed, stamp))
@@ -130,3 +182,23 @@ class ProgressStore:
             LessonState(user, lesson, bool(passed), _time(p_at), failed, _time(f_at))
             for user, lesson, passed, p_at, failed, f_at in rows
         ]
+
+    def exercise_stats(self) -> list[ExerciseStats]:
+        """Return each exercise's pass rate and median attempts to pass, by lesson."""
+        import statistics
+
+        rows = self._db.execute(
+            "SELECT exercise, lesson, attempts, passed_at_attempt FROM attempts "
+            "ORDER BY lesson, exercise"
+        ).fetchall()
+        by_exercise: dict[str, list[tuple[int, int, int | None]]] = {}
+        for exercise, lesson, attempts, passed_at in rows:
+            by_exercise.setdefault(exercise, []).append((lesson, attempts, passed_at))
+        stats = []
+        for exercise, entries in by_exercise.items():
+            passes = [p for _l, _a, p in entries if p is not None]
+            median = statistics.median(passes) if passes else None
+            stats.append(
+                ExerciseStats(exercise, entries[-1][0], len(entries), len(passes), median)
+            )
+        return sorted(stats, key=lambda s: (s.lesson, s.exercise))

@@ -15,12 +15,12 @@ import sys
 import threading
 import urllib.error
 import urllib.request
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Protocol
 
 from .record import PROGRESS_URL_ENV, Record, record_body
 
-__all__ = ["TIMEOUT_S", "report_progress", "send_record"]
+__all__ = ["TIMEOUT_S", "report_attempt", "report_progress", "send_record"]
 
 TIMEOUT_S = 2.0
 _warned = threading.Event()  # one line per kernel, not one per self-check
@@ -92,6 +92,23 @@ def report_progress(
 
     Returns the thread (a test may join it); the lesson does not wait for it.
     """
+    return _post(lambda user: _record(check, user), environ)
+
+
+def report_attempt(
+    lesson: int,
+    exercise: str,
+    attempt: int,
+    passed: bool,
+    environ: Mapping[str, str] | None = None,
+) -> threading.Thread | None:
+    """Send one exercise attempt to the progress service, as `report_progress` does."""
+    return _post(lambda user: Record(user, lesson, passed, "", exercise, attempt), environ)
+
+
+def _post(
+    make: Callable[[str], Record], environ: Mapping[str, str] | None
+) -> threading.Thread | None:
     env = os.environ if environ is None else environ
     url, token = env.get(PROGRESS_URL_ENV), env.get("JUPYTERHUB_API_TOKEN")
     user = env.get("JUPYTERHUB_USER")
@@ -100,7 +117,7 @@ def report_progress(
     try:
         thread = threading.Thread(
             target=_send_quietly,
-            args=(url, token, _record(check, user)),
+            args=(url, token, make(user)),
             name="course-progress-report",
             daemon=True,
         )

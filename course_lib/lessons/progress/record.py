@@ -27,7 +27,16 @@ __all__ = [
 ]
 
 MAX_FAILED_CHARS = 500  # the client cuts the failed check's text to this
-_FIELDS = {"user": str, "lesson": int, "passed": bool, "failed": str}
+_FIELDS = {
+    "user": str,
+    "lesson": int,
+    "passed": bool,
+    "failed": str,
+    "exercise": str,
+    "attempt": int,
+}
+MAX_EXERCISE_CHARS = 40
+_OPTIONAL = {"failed": "", "exercise": "", "attempt": 0}
 
 
 class RecordError(ValueError):
@@ -36,24 +45,32 @@ class RecordError(ValueError):
 
 @dataclass(frozen=True)
 class Record:
-    """One self-check's verdict: whose, which lesson, passed or not, what failed first."""
+    """One self-check's verdict: whose, which lesson, passed or not, what failed first.
+
+    Or, with `exercise` set, one attempt at a lesson's exercise: its number and whether it
+    passed (the progress page shows each exercise's pass rate and median attempts).
+    """
 
     user: str
     lesson: int
     passed: bool
     failed: str = ""
+    exercise: str = ""
+    attempt: int = 0
 
 
 def record_body(record: Record) -> bytes:
     """Return the JSON body a client posts for `record` (the failed text cut to size)."""
     failed = record.failed[:MAX_FAILED_CHARS]
     fields = {"user": record.user, "lesson": record.lesson, "passed": record.passed}
+    if record.exercise:
+        fields.update(exercise=record.exercise, attempt=record.attempt)
     return json.dumps({**fields, "failed": failed}).encode("utf-8")
 
 
 def _field(data: dict[str, Any], name: str) -> Any:
     kind = _FIELDS[name]
-    value = data.get(name, "" if name == "failed" else None)
+    value = data.get(name, _OPTIONAL.get(name))
     # bool is an int in Python: a lesson of `true` is refused, as is a passed of 1
     if not isinstance(value, kind) or (kind is int and isinstance(value, bool)):
         raise RecordError(
@@ -73,7 +90,7 @@ def parse_record(body: bytes) -> Record:
     except (UnicodeDecodeError, json.JSONDecodeError) as error:
         raise RecordError(f"the body is not JSON: {error}") from None
     if not isinstance(data, dict):
-        raise RecordError('the body must be a JSON object: {"user", "lesson", "passed", "failed"}')
+        raise RecordError('the body must be a JSON object: {"user", "lesson", "passed", ...}')
     unknown = sorted(set(data) - set(_FIELDS))
     if unknown:
         raise RecordError(f"unknown field(s) {', '.join(unknown)}; known: {', '.join(_FIELDS)}")
@@ -87,4 +104,11 @@ def parse_record(body: bytes) -> Record:
         raise RecordError('a passed record has no failed check: send "failed": ""')
     if len(failed) > MAX_FAILED_CHARS:
         raise RecordError(f'"failed" is longer than {MAX_FAILED_CHARS} characters')
-    return Record(user, lesson, passed, failed)
+    exercise, attempt = _field(data, "exercise"), _field(data, "attempt")
+    if len(exercise) > MAX_EXERCISE_CHARS:
+        raise RecordError(f'"exercise" is longer than {MAX_EXERCISE_CHARS} characters')
+    if exercise and attempt < 1:
+        raise RecordError(f'an exercise\'s "attempt" counts from 1, got {attempt}')
+    if attempt and not exercise:
+        raise RecordError('"attempt" belongs to an exercise: send "exercise" too')
+    return Record(user, lesson, passed, failed, exercise, attempt)

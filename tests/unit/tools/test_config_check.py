@@ -124,7 +124,8 @@ def test_templates_show_other_settings() -> None:
 
     other = CourseSettings(0.15, False, TravelExercise(1.2, 0.1, 30.0))
     nb = nbformat.read(NOTEBOOKS_DIR / "11_beyond_the_tutorial.ipynb", as_version=4)
-    assert len(render_cells("11_beyond_the_tutorial.ipynb", nb, other)) == 3
+    # the travel exercise's three cells, and the saved-panel exercise's prose (its velocity)
+    assert len(render_cells("11_beyond_the_tutorial.ipynb", nb, other)) == 4
     sources = "\n".join(c.source for c in nb.cells)
     assert "**1.20 m** (within 10 cm)" in sources
     assert "travel_time 8.0\nparam set /descriptor_vel_node velocity 0.15" in sources

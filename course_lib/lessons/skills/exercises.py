@@ -1,0 +1,405 @@
+"""The four skill exercises a lesson arms: `ex = lesson.<name>_exercise()`, then `ex.check()`.
+
+Each arm puts the robot back at its start pose and starts recording /odom; each check measures
+what the learner's node and the robot did since, judges it (`judge`), counts the attempt in the
+learner's folder (`attempts`), tells the class's progress page on a hub, stops the robot and
+arms again for the next attempt.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import time
+from pathlib import Path
+from typing import Any
+
+from ...core.errors import CourseError
+from . import measure
+from .attempts import AttemptLog
+from .judge import (
+    DriveAttempt,
+    StartupAttempt,
+    StartupTask,
+    Verdict,
+    judge_drive,
+    judge_startup,
+)
+
+__all__ = [
+    "DriveExercise",
+    "LaunchExercise",
+    "ParamsFileExercise",
+    "SavedPanelExercise",
+    "SkillExercise",
+]
+
+PARAM_VEL = "/param_vel_node"
+DESCRIPTOR_VEL = "/descriptor_vel_node"
+
+
+def _set(node: str, name: str, value: float) -> None:
+    from ...ros2.api import nodes_and_params as api
+
+    with contextlib.suppress(Exception):  # the node may be gone: then nothing drives
+        if node in api.node_list() and api.param_get(node, name).value != value:
+            api.param_set(node, name, value)  # only a change: the speed plot marks each set
+
+
+class SkillExercise:
+    """What every skill exercise does around its own measuring and judging."""
+
+    name = ""  # the attempt log's key and the progress page's column
+    executable = "param_vel"
+    node = PARAM_VEL
+
+    def __init__(self, lesson: Any) -> None:
+        self.lesson = lesson
+        self.log = AttemptLog(lesson.learner_dir)
+        self.trace = measure.OdomTrace()
+        self.attempts: list[Verdict] = []
+        self.armed_at: float | None = None
+        self._known: set[int] = set()
+
+    def task(self) -> str:
+        raise NotImplementedError
+
+    def _judge(self, number: int) -> Verdict:
+        raise NotImplementedError
+
+    def _stop_robot(self) -> None:
+        _set(self.node, "velocity", 0.0)
+
+    def _others(self) -> list[str]:
+        """Return who else than the learner's node publishes on /cmd_vel (names, pids)."""
+        from ...lab.drivers import describe
+        from ...lab.drivers import other_drivers as others_of
+        from ...ros2.api.nodes_and_params import client
+
+        running = [c for c in self._children() if c.alive]
+        own = running[-1].pid if running else None
+        return [describe(p) for p in others_of(client(), own)]
+
+    def _children(self) -> list[Any]:
+        return [c for c in self.lesson.session.every_child if c.name == self.executable]
+
+    def arm(self) -> str:
+        """Stop the robot, put it back at its start pose, record /odom from now on."""
+        world = self.lesson.current_world
+        self._stop_robot()
+        world.reset()
+        self.trace.attach(world)
+        self._known = {c.pid for c in self._children()}
+        self.armed_at = time.time()
+        tally = self.log.tally(self.name)
+        done = f" (attempts so far: {tally.attempts})" if tally.attempts else ""
+        return f"Robot at its start pose.{done} {self.task()}\n"
+
+    def check(self) -> Verdict:
+        """Judge what happened since `arm()`; count the attempt; arm again for the next one."""
+        if self.armed_at is None:
+            raise CourseError("The exercise is not armed.", hint="run its first cell again.")
+        others = self._others()
+        if others:  # not only the learner's node moved the robot: no verdict on it
+            verb = "publish" if len(others) > 1 else "publishes"
+            self.arm()
+            number = self.log.tally(self.name).attempts + 1
+            return Verdict(
+                False,
+                f"Not judged (attempt {number} is still yours): {', '.join(others)} also "
+                f"{verb} on /cmd_vel: stop it (Ctrl-C in its terminal), then try again.",
+            )
+        number = self.log.tally(self.name).attempts + 1
+        verdict = self._judge(number)
+        self.log.add(self.name, verdict.passed)
+        self.attempts.append(verdict)
+        passed = self.lesson.state.setdefault("exercises_passed", set())
+        if verdict.passed:
+            passed.add(self.name)
+        from ..progress.client import report_attempt
+
+        report_attempt(self.lesson.number, self.name, number, verdict.passed)
+        self._stop_robot()
+        self.arm()
+        return verdict
+
+
+class DriveExercise(SkillExercise):
+    """Lesson 7: set velocity while param_vel_node runs, so the robot drives D m in T s."""
+
+    name = "07 drive"
+
+    def __init__(self, lesson: Any) -> None:
+        super().__init__(lesson)
+        self.settings = lesson.settings.drive_exercise
+
+    def task(self) -> str:
+        s = self.settings
+        return (
+            f"Task: set velocity on {self.node} so that the robot drives {s.distance_m:g} m in "
+            f"{s.time_s:g} s (± {s.tolerance_m * 100:g} cm); then run the check: it measures the "
+            f"next {s.time_s:g} s of simulated time."
+        )
+
+    def _judge(self, number: int) -> Verdict:
+        from ...ros2.api import nodes_and_params as api
+
+        s = self.settings
+        world = self.lesson.current_world
+        before = measure.steady_odom(world)
+        after = world.wait_sim_time(before.time_s + s.time_s)
+        driven = measure.distance_m(before.pose, after.pose)
+        try:
+            value = api.param_get(self.node, "velocity").value
+        except Exception:
+            value = None
+        elsewhere, other = "", 0.0
+        if abs(driven - s.distance_m) > s.tolerance_m:
+            target = s.distance_m / s.time_s
+            elsewhere, other = measure.node_holding(target, self.node, s.tolerance_m / s.time_s)
+        return judge_drive(
+            DriveAttempt(driven, value, elsewhere, other),
+            distance_m=s.distance_m,
+            time_s=s.time_s,
+            tolerance_m=s.tolerance_m,
+            node=self.node,
+            number=number,
+            show_hints=self.lesson.settings.show_hints,
+        )
+
+
+class _StartupExercise(SkillExercise):
+    """A node started after arming must hold `param` at the target from its first second."""
+
+    needs_file = True
+    param = "velocity"
+    unit = "m/s"
+    first_line = "Velocity parameter is"  # what the node logs first
+
+    @property
+    def settings(self) -> Any:
+        return self.lesson.settings.startup_exercises
+
+    @property
+    def target(self) -> float:
+        raise NotImplementedError
+
+    @property
+    def tolerance(self) -> float:
+        return self.settings.tolerance_mps
+
+    def how(self) -> str:
+        raise NotImplementedError
+
+    def _started(self) -> tuple[Any, list[Any], Path | None]:
+        """Return the newest process started since arming, its output lines, its file."""
+        fresh = [c for c in self._children() if c.pid not in self._known]
+        if not fresh:
+            return None, [], None
+        child = fresh[-1]
+        return child, child.lines, measure.params_file_of(child.argv, Path(os.getcwd()))
+
+    def _file_value(self, path: Path) -> measure.FileValue:
+        return measure.params_file_value(path, self.node)
+
+    def _start_time(self, lines: list[Any]) -> tuple[float | None, float | None]:
+        """Return (wall time of the node's first tick, its logged value), if it logged one."""
+        tick = measure.first_tick(lines)
+        return (tick[0], tick[1]) if tick else (None, None)
+
+    def _measure(self, t0: float, first: float) -> tuple[float, float, str]:
+        """Return (value measured at the start, value now, the sentence) from /odom."""
+        window = self.settings.window_s
+        self.trace.wait_until(t0 + window + 0.5, timeout=window + 5.0)
+        start = self.trace.speed(t0 + window - 0.5, t0 + window + 0.5)
+        now = self.lesson.current_world.odom().linear_mps
+        return start, now, f"the robot drove at {start:.2f} m/s in the node's first seconds"
+
+    def _judge(self, number: int) -> Verdict:
+        child, _lines, path = self._started()
+        task = StartupTask(
+            self.node,
+            self.executable,
+            self.param,
+            self.unit,
+            self.target,
+            self.tolerance,
+            self.how(),
+            self.needs_file,
+        )
+        show = self.lesson.settings.show_hints
+        if child is None:
+            return judge_startup(StartupAttempt(False), task, number=number, show_hints=show)
+        # a node started moments ago: its first line (or its crash) first
+        child.wait_for_line(lambda line: self.first_line in line.text, 5.0)
+        found = self._file_value(path) if path is not None else measure.FileValue()
+        t0, first = self._start_time(child.lines)
+        if t0 is None or not child.alive:  # it ended at start-up: say why, if its file says
+            crashed = "InvalidParameterType" in child.text()
+            problem = found.problem or ("integer" if crashed else "")
+            attempt = StartupAttempt(
+                True, str(path or ""), problem, found.written or "1", found.key,
+                measured_text=f"{self.node} ended at start-up",
+            )  # fmt: skip
+            return judge_startup(attempt, task, number=number, show_hints=show)
+        first_value = found.value if first is None and found.value is not None else first or 0.0
+        start, now, text = self._measure(t0, first_value)
+        elsewhere, other = "", 0.0
+        if abs(start - self.target) > self.tolerance:
+            elsewhere, other = measure.node_holding(self.target, self.node, self.tolerance)
+        attempt = StartupAttempt(
+            True,
+            str(path or ""),
+            found.problem,
+            found.written,
+            found.key,
+            first_value,
+            start,
+            now,
+            text,
+            elsewhere,
+            other,
+        )
+        return judge_startup(attempt, task, number=number, show_hints=show)
+
+
+class ParamsFileExercise(_StartupExercise):
+    """Lesson 9: dump, edit, restart with --params-file: the new speed from the first second."""
+
+    name = "09 params file"
+
+    @property
+    def target(self) -> float:
+        return self.settings.params_file_mps
+
+    def how(self) -> str:
+        return (
+            '`lesson.stop("param_vel")`, then `%ros2 run parameter_tests param_vel --ros-args '
+            "--params-file my_files/<your edited dump>.yaml`."
+        )
+
+    def task(self) -> str:
+        return (
+            f"Task: make {self.node} start at velocity {self.target:g}: dump its parameters to "
+            "a file, edit it, restart the node with `--params-file`; then run the check. The "
+            "robot must drive at the new speed from the node's first second."
+        )
+
+
+class LaunchExercise(_StartupExercise):
+    """Lesson 10: a launch file of the learner's starts param_vel_node at a given velocity."""
+
+    name = "10 launch file"
+    needs_file = False
+
+    @property
+    def target(self) -> float:
+        return self.settings.launch_mps
+
+    def how(self) -> str:
+        return (
+            "write a Node(package='parameter_tests', executable='param_vel', "
+            "name='param_vel_node', parameters=[...]) launch file with `%%writefile "
+            "my_files/<name>.launch.py`, then "
+            '`run = lesson.launch("my_files/<name>.launch.py")`.'
+        )
+
+    def task(self) -> str:
+        return (
+            f"Task: write a launch file that starts {self.node} with velocity {self.target:g}, "
+            "launch it with `lesson.launch(...)`, then run the check."
+        )
+
+    def _children(self) -> list[Any]:
+        return [h.child for h in self.lesson.state.get("launches", [])]
+
+    def _started(self) -> tuple[Any, list[Any], Path | None]:
+        from ...launch.command.resolve import resolve_launch_file
+
+        fresh = [h for h in self.lesson.state.get("launches", []) if h.pid not in self._known]
+        if not fresh:
+            return None, [], None
+        handle = fresh[-1]
+        rest = handle.argv[1:]
+        file = rest.pop(0) if rest and ":=" not in rest[0] else None
+        try:
+            path, _args = resolve_launch_file(handle.argv[0], file, rest)
+        except Exception:  # the launch itself said what was wrong
+            return handle.child, handle.child.lines, None
+        return handle.child, handle.child.lines, Path(path)
+
+    def _file_value(self, path: Path) -> measure.FileValue:
+        return measure.launch_file_value(path, self.executable)
+
+
+class SavedPanelExercise(_StartupExercise):
+    """Lesson 11: travel_time set with the panel and saved survives a restart of the node."""
+
+    name = "11 saved panel"
+    executable = "descriptor_vel"
+    node = DESCRIPTOR_VEL
+    param = "travel_time"
+    unit = "s"
+    first_line = "Ready:"
+
+    @property
+    def target(self) -> float:
+        return self.settings.saved_panel_travel_s
+
+    @property
+    def tolerance(self) -> float:
+        return self.settings.travel_tolerance_s
+
+    def how(self) -> str:
+        return (
+            '`lesson.stop("descriptor_vel")`, then `%ros2 run parameter_descriptors '
+            "descriptor_vel --ros-args -p use_sim_time:=true --params-file "
+            "my_files/panel_params.yaml`."
+        )
+
+    def task(self) -> str:
+        v = self.lesson.settings.default_velocity_mps
+        return (
+            f"Task: set travel_time to {self.target:.1f} with the panel and save; restart "
+            f"{self.node} so that it keeps it; then run the check: it sets velocity {v:g} and "
+            "measures the trip."
+        )
+
+    def _start_time(self, lines: list[Any]) -> tuple[float | None, float | None]:
+        ready = next((ln for ln in lines if self.first_line in ln.text), None)
+        return (ready.time, None) if ready else (None, None)
+
+    def _file_value(self, path: Path) -> measure.FileValue:
+        return measure.params_file_value(path, self.node, self.param)
+
+    def _measure(self, t0: float, first: float) -> tuple[float, float, str]:
+        """Start a trip at the course's velocity; the trip's length in time is measured."""
+        from ...ros2.api import nodes_and_params as api
+
+        v = self.lesson.settings.default_velocity_mps
+        world = self.lesson.current_world
+        # the node's sim clock needs its first /clock message before a trip can be timed
+        self.trace.wait_until(t0 + self.settings.window_s, timeout=self.settings.window_s + 5)
+        try:
+            now = float(api.param_get(self.node, self.param).value)
+        except Exception:
+            now = 0.0
+        start_pose = world.odom().pose
+        if not api.param_set(self.node, "velocity", v).successful:
+            return 0.0, now, "the node refused the checker's velocity"
+        limit = max(self.target * 2, self.target + 3.0)
+        moving = world.wait_for_odom(lambda r: abs(r.linear_mps) > 0.01, 10.0)
+        with contextlib.suppress(TimeoutError):
+            world.wait_for_odom(
+                lambda r: abs(r.linear_mps) < 0.003 or r.time_s > moving.time_s + limit, 60.0
+            )
+        end = world.odom()
+        still = abs(end.linear_mps) < 0.003
+        driven = measure.distance_m(start_pose, end.pose)
+        trip = driven / v if still else 0.0
+        text = (
+            f"its trip at {v:g} m/s was {driven:.2f} m, {trip:.2f} s"
+            if still
+            else f"the robot did not stop by itself ({driven:.2f} m at {v:g} m/s)"
+        )
+        return trip, now, text
