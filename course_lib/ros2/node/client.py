@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import threading
 import time
+from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -28,6 +29,7 @@ from .discovery import (
     profile_timing,
     read_bound_participants,
     wait_settled,
+    without_ghosts,
 )
 
 __all__ = ["DISCOVERY_WAIT_S", "RosClient", "ServiceCallError"]
@@ -166,12 +168,38 @@ class RosClient:
         return bool(self.node.get_parameter("use_sim_time").value)
 
     def node_names(self, *, include_hidden: bool = False) -> list[NodeName]:
-        """Return the nodes the graph shows (hidden ones only if asked)."""
-        return [
+        """Return the nodes the graph shows (hidden ones only if asked), less the ghosts of a
+        name listed twice (`discovery.without_ghosts`)."""
+        listed = [
             NodeName(name, ns, ns + ("" if ns.endswith("/") else "/") + name)
             for name, ns in self.node.get_node_names_and_namespaces()
-            if include_hidden or (name and not name.startswith("_"))
         ]
+        full = [n.full_name for n in listed]
+        if len(set(full)) < len(full):
+            kept = Counter(without_ghosts(full, *self._holders()))
+            unique = []
+            for name in listed:
+                if kept[name.full_name] > 0:
+                    kept[name.full_name] -= 1
+                    unique.append(name)
+            listed = unique
+        return [n for n in listed if include_hidden or (n.name and not n.name.startswith("_"))]
+
+    def _holders(self) -> tuple[dict[str, set[tuple[int, ...]]], bool]:
+        """Return the participants holding endpoints of each node name, and whether every
+        participant bound on this host has been seen (the graph is settled)."""
+        node = self.node
+        holders: dict[str, set[tuple[int, ...]]] = {}
+        for topic, _types in node.get_topic_names_and_types(no_demangle=True):
+            for info in (
+                *node.get_publishers_info_by_topic(topic, no_mangle=True),
+                *node.get_subscriptions_info_by_topic(topic, no_mangle=True),
+            ):
+                full = info.node_namespace.rstrip("/") + "/" + info.node_name
+                holders.setdefault(full, set()).add(participant_prefix(info.endpoint_gid))
+        bound = read_bound_participants(self._domain_id)
+        seen = set().union(*holders.values()) if holders else set()
+        return holders, bound is not None and len(seen) == bound
 
     def wait_for_node(self, full_name: str, *, include_hidden: bool, timeout: float) -> bool:
         """Wait (bounded, at least DISCOVERY_WAIT_S) until `full_name` is in the graph."""

@@ -17,7 +17,8 @@ most that. The counting and the rules are pure; reading /proc is one small funct
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Iterable, Sequence
+from collections import Counter
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -33,6 +34,7 @@ __all__ = [
     "requested_spin_time",
     "timing_from_profile",
     "wait_settled",
+    "without_ghosts",
 ]
 
 UNKNOWN_NODE = "_NODE_NAME_UNKNOWN_"
@@ -184,3 +186,28 @@ def wait_settled(
         seen = view()
         if seen != current:
             current, changed = seen, clock()
+
+
+def without_ghosts(
+    names: Sequence[str], holders: Mapping[str, set[tuple[int, ...]]], settled: bool
+) -> list[str]:
+    """Return `names` (full node names, in the graph's order) less the ghosts of a name listed
+    more than once.
+
+    A node that has left can stay in a long-lived client's node list with no participant
+    behind it (the graph cache re-adds a participant's node info that arrives after the
+    participant's removal; the real daemon shows such ghosts too). `holders` maps a node name
+    to the participants seen holding its endpoints; once the graph is `settled` (every
+    participant bound on this host has been seen), a name is listed as many times as
+    participants hold it, and at least once: a name listed once is never hidden.
+    """
+    counts = Counter(names)
+    if not settled or all(count == 1 for count in counts.values()):
+        return list(names)
+    left = {name: max(1, len(holders.get(name, ()))) for name in counts}
+    kept = []
+    for name in names:
+        if left[name] > 0:
+            kept.append(name)
+            left[name] -= 1
+    return kept

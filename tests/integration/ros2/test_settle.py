@@ -49,3 +49,23 @@ def test_a_warm_client_does_not_wait(session: Session) -> None:
 
 def _names(client: RosClient) -> set[str]:
     return {n.full_name for n in client.node_names()}
+
+
+def test_two_live_namesakes_are_both_listed(session: Session) -> None:
+    """The ghost filter (discovery.without_ghosts) never hides a real duplicate: two live
+    param_vel_node processes are listed twice, as the real `ros2 node list` does."""
+    first = session.run("parameter_tests", "param_vel")
+    second = session.run("parameter_tests", "param_vel")
+    client = RosClient(session.node, session.wait_future)
+    try:
+
+        def twice() -> bool:
+            names = [n.full_name for n in client.node_names()]
+            return names.count("/param_vel_node") == 2
+
+        assert wait_until(twice, 15), [n.full_name for n in client.node_names()]
+        _holders, settled = client._holders()
+        assert settled, "every bound participant seen, so the filter did run"
+    finally:
+        first.stop()
+        second.stop()

@@ -170,3 +170,22 @@ def test_an_unseen_participant_holds_only_a_young_client_and_bounded() -> None:
     warm = Graph({0.0: stuck})
     warm.settle(born=-60.0)
     assert warm.now == 0.0
+
+
+def test_a_ghost_of_a_name_listed_twice_is_dropped_once_the_graph_is_settled() -> None:
+    from course_lib.ros2.node.discovery import without_ghosts
+
+    names = ["/mujoco", "/param_vel_node", "/param_vel_node", "/param_vel_node"]
+    one = {"/mujoco": {(1,)}, "/param_vel_node": {(2,)}}
+    assert without_ghosts(names, one, settled=True) == ["/mujoco", "/param_vel_node"]
+    two = {"/mujoco": {(1,)}, "/param_vel_node": {(2,), (3,)}}  # two real namesakes stay
+    assert without_ghosts(names, two, settled=True) == names[:3]
+    # not settled (a participant bound but not seen yet): the graph as it is
+    assert without_ghosts(names, one, settled=False) == names
+
+
+def test_a_name_listed_once_is_never_hidden() -> None:
+    from course_lib.ros2.node.discovery import without_ghosts
+
+    assert without_ghosts(["/a", "/b"], {}, settled=True) == ["/a", "/b"]
+    assert without_ghosts(["/a", "/a"], {}, settled=True) == ["/a"]
