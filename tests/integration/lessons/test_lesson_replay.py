@@ -47,7 +47,9 @@ def test_the_run_is_saved_with_its_plot_and_marks(driven: tuple[Lesson, object])
     page = link.path.read_text(encoding="utf-8")
     _samples, marks = plot.snapshot()
     labels = [label for _, label in marks]
-    assert labels == ["velocity := 0.2", "velocity := 0"], labels
+    # numbered like lesson.history()'s entries
+    assert [label.split(" ", 1)[-1] for label in labels] == ["velocity := 0.2", "velocity := 0"]
+    assert all(label.startswith("#") for label in labels), labels
     assert page.count('class="mark"') == 2 and "velocity := 0.2" in page
     run = lesson.replay.log.run(lesson.replay.since)
     assert run[-1].pose[0] - run[0].pose[0] > 0.3, "the replay's robot did not drive"
