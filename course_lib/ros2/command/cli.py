@@ -60,18 +60,11 @@ def _direct_client(argv: list[str], env: dict[str, str]):  # type: ignore[no-unt
     return make
 
 
-def _maybe_option(word: str) -> bool:
-    """Return whether `word` may be --no-daemon or -s/--use-sim-time, abbreviated or grouped."""
-    if word.startswith("--"):
-        return len(word) > 4 and (
-            "--no-daemon".startswith(word) or "--use-sim-time".startswith(word)
-        )
-    return word.startswith("-") and word[1:].isalpha() and "s" in word
-
-
 def _own_node_options(argv: list[str]) -> tuple[bool, bool]:
     """Return (--no-daemon, --use-sim-time) as ros2cli parses argv (free when neither is given)."""
-    if not any(_maybe_option(word) for word in argv):
+    from course_lib.ros2.command.quick import maybe_own_node_option
+
+    if not any(maybe_own_node_option(word) for word in argv):
         return False, False
     from course_lib.ros2.command import parsers
 

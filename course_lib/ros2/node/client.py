@@ -23,6 +23,7 @@ from ..values import VALUE_FIELDS, ParamValue, value_from_msg
 from .discovery import (
     UNKNOWN_NODE,
     GraphView,
+    domain_newcomers,
     participant_prefix,
     profile_timing,
     read_bound_participants,
@@ -37,6 +38,9 @@ DISCOVERY_WAIT_S = 2.5
 # Until this age, a node may still be unknown to a fresh client (Fast DDS re-announces every
 # 3 s by default), so node lookups wait at least until the client is this old.
 YOUNG_CLIENT_S = 4.0
+# A node missing from a graph known whole for this long is not there: "Node not found" at
+# once, not after DISCOVERY_WAIT_S (a just-started node is waited for: graph_complete).
+SETTLED_QUIET_S = 0.15
 SERVICE_WAIT_S = 5.0
 CALL_TIMEOUT_S = 10.0
 # First wait for a reply before re-sending a read (a reply normally takes about 1 ms).
@@ -179,8 +183,32 @@ class RosClient:
             names = self.node_names(include_hidden=include_hidden)
             return full_name in {n.full_name for n in names}
 
-        age = time.monotonic() - self._born
-        return wait_until(found, max(float(timeout), DISCOVERY_WAIT_S, YOUNG_CLIENT_S - age))
+        start = time.monotonic()
+        deadline = start + max(float(timeout), DISCOVERY_WAIT_S, YOUNG_CLIENT_S - self.age())
+        complete_since: float | None = None
+        while not found():
+            now = time.monotonic()
+            if now >= deadline:
+                return False
+            if self.graph_complete():
+                complete_since = now if complete_since is None else complete_since
+                if now - complete_since >= SETTLED_QUIET_S:
+                    return False  # the whole domain is known, and the node is not in it
+            else:
+                complete_since = None
+            time.sleep(_POLL_S)
+        return True
+
+    def graph_complete(self) -> bool:
+        """Return whether this client knows the whole domain: it is warm, has seen every
+        participant bound on this host with every endpoint's node named, and no process of
+        the domain is young enough to be starting a node that has not joined DDS yet."""
+        if self.age() < self._timing.warm_s:
+            return False
+        view = self.graph_view()
+        if view.missing_participants != 0 or view.unknown_endpoints:
+            return False  # None: /proc cannot count participants here
+        return not domain_newcomers(self._domain_id)
 
     def topics(self, *, include_hidden: bool = False) -> list[TopicInfo]:
         """Return the topics with their types, in the graph's order."""

@@ -16,6 +16,7 @@ most that. The counting and the rules are pure; reading /proc is one small funct
 
 from __future__ import annotations
 
+import os
 import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
@@ -30,6 +31,7 @@ __all__ = [
     "NAME_WAIT_S",
     "DiscoveryTiming",
     "GraphView",
+    "domain_newcomers",
     "requested_spin_time",
     "timing_from_profile",
     "wait_settled",
@@ -184,3 +186,44 @@ def wait_settled(
         seen = view()
         if seen != current:
             current, changed = seen, clock()
+
+
+# A process of the domain younger than this may still be starting its node (a Python
+# importing rclpy before its participant binds: about a second, several on a loaded machine).
+NEWCOMER_S = 6.0
+_CLIENT_MODULES = ("course_lib.ros2.command.cli", "course_lib.ros2.command.quick")
+_NODE_STARTING_COMMANDS = ("run", "launch")
+
+
+def ros2_client_command(cmdline: Sequence[str]) -> bool:
+    """Return whether a command line is a `ros2` command that starts no node of its own
+    (`ros2 param get ...`: it asks; `ros2 run ...` and `ros2 launch ...` start nodes)."""
+    for i, arg in enumerate(cmdline):
+        if arg in _CLIENT_MODULES or (arg.rpartition("/")[2] == "ros2" and i <= 2):
+            words = [w for w in cmdline[i + 1 :] if not w.startswith("-")]
+            return bool(words) and words[0] not in _NODE_STARTING_COMMANDS
+    return False
+
+
+def domain_newcomers(domain_id: int, *, max_age_s: float = NEWCOMER_S) -> list[int]:
+    """Return the pids of this host's processes in `domain_id` started under `max_age_s`
+    ago that may be starting a node (this process and `ros2` query commands left out).
+
+    What a settled graph cannot show yet: a node whose process has not joined DDS. The
+    processes of a domain carry its ROS_DOMAIN_ID (the course starts every one with it).
+    """
+    try:
+        uptime = float(procfs.PROC.joinpath("uptime").read_text().split()[0])
+    except (OSError, ValueError, IndexError):
+        return []
+    tick = os.sysconf("SC_CLK_TCK")
+    me, found = os.getpid(), []
+    for pid in procfs.pids():
+        start = procfs.start_time(pid)
+        if pid == me or start is None or uptime - int(start) / tick > max_age_s:
+            continue
+        if procfs.environ(pid).get("ROS_DOMAIN_ID", "").strip() != str(domain_id):
+            continue
+        if not ros2_client_command(procfs.cmdline(pid) or ()):
+            found.append(pid)
+    return found
