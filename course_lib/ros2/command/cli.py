@@ -37,6 +37,10 @@ def _local(argv: list[str], domain: str | None, *, direct: bool = False) -> int:
     console = StreamingConsole(write, width=shutil.get_terminal_size().columns)
     env = _terminal_env(domain)
     if command_of(argv) == "launch":  # launch resolves packages through this process's env
+        from course_lib.ros2.verbs.launch import launch_env
+
+        words = argv[argv.index("launch") + 1 :]
+        env = launch_env(words, os.environ, env)
         os.environ.update(env)
     factory = _direct_client(argv, env) if direct else _in_process_client
     ctx = Context(console, factory, cwd=os.getcwd(), env=env)

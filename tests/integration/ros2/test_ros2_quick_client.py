@@ -9,6 +9,7 @@ the daemon knows the whole domain, and a node started just before the command is
 
 from __future__ import annotations
 
+import os
 import shlex
 import signal
 import subprocess
@@ -191,3 +192,19 @@ def test_a_node_started_just_before_the_command_is_found(ros_session, daemon) ->
         assert (proc.stdout, proc.stderr, proc.returncode) == ("Double value is: 0.0\n", "", 0)
     finally:
         child.stop()
+
+
+def test_launch_of_a_missing_package_lists_only_the_callers_prefixes(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    env = {k: v for k, v in os.environ.items() if not k.startswith("_ROS_WHEELS")}
+    env.update({"AMENT_PREFIX_PATH": f"{tmp_path}:{sys.prefix}", "ROS_DOMAIN_ID": ""})
+    proc = subprocess.run(
+        [str(LAUNCHER), "launch", "no_such_pkg", "param_vel.launch.py"],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    case = CASES["launch_missing_package"]
+    expected = case["stderr"].replace("['install', '<venv>']", repr([str(tmp_path), sys.prefix]))
+    assert (proc.stdout, proc.stderr, proc.returncode) == ("", expected, case["exit"])
