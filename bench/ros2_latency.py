@@ -59,9 +59,16 @@ def _report(label: str, times: list[float], real: str = "") -> None:
     )
 
 
-def _terminal(env: dict[str, str], *args: str, code: int = 0) -> None:
+# The console script pip writes for `ros2` (what the venv's `ros2` was before issue 23): a
+# Python that the ROS wheels' bootstrapper re-executes, then the full command.
+FULL = "import sys; from course_lib.ros2.command.cli import main; sys.exit(main())"
+
+
+def _terminal(env: dict[str, str], *args: str, code: int = 0, full: bool = False) -> None:
+    bin_dir = REPO / ".venv" / "bin"
+    start = [str(bin_dir / "python"), "-c", FULL] if full else [str(bin_dir / "ros2")]
     proc = subprocess.run(
-        [str(REPO / ".venv" / "bin" / "ros2"), *args],
+        [*start, *args],
         env=env,
         capture_output=True,
         text=True,
@@ -100,23 +107,38 @@ VERBS: list[tuple[str, ...]] = [
 
 
 def _every_verb(env: dict[str, str], runs: int) -> None:
-    """Terminal medians of every verb, beside the interpreter's own start, one run."""
+    """Terminal medians of every verb: the console script as it was, the venv's `ros2`, and
+    `python -c pass` (the interpreter alone, bootstrapper included), interleaved per run."""
     python = str(REPO / ".venv" / "bin" / "python")
-    for label, argv in (
-        ("python -c pass", [python, "-c", "pass"]),
-        ("python -S -c pass", [python, "-S", "-c", "pass"]),
-    ):
-        _report(
-            f"terminal {label}",
-            _timed(lambda a=argv: subprocess.run(a, env=env, check=True), runs),
-        )
-    medians = []
+    _report(
+        "terminal python -S -c pass",
+        _timed(lambda: subprocess.run([python, "-S", "-c", "pass"], env=env, check=True), runs),
+    )
+
+    def interpreter() -> None:
+        subprocess.run([python, "-c", "pass"], env=env, check=True)
+
+    doors = {
+        "console script (2 starts)": lambda argv: _terminal(env, *argv, full=True),
+        "venv ros2": lambda argv: _terminal(env, *argv),
+        "python -c pass": lambda _argv: interpreter(),
+    }
+    print(f"{'median ms':32s}" + "".join(f"{name:>28s}" for name in doors))
+    worst = dict.fromkeys(doors, 0.0)
     for argv in VERBS:
         _terminal(env, *argv)  # warm
-        times = _timed(lambda argv=argv: _terminal(env, *argv), runs)
-        medians.append(statistics.median(times))
-        _report(f"terminal ros2 {' '.join(argv[:2])}", times)
-    print(f"{'terminal ros2, slowest verb median':40s} {max(medians) * 1e3:7.1f} ms")
+        times: dict[str, list[float]] = {name: [] for name in doors}
+        for _ in range(runs):  # interleaved: every door sees the same load
+            for name, door in doors.items():
+                started = time.perf_counter()
+                door(argv)
+                times[name].append(time.perf_counter() - started)
+        medians = {name: statistics.median(t) * 1e3 for name, t in times.items()}
+        worst = {name: max(worst[name], medians[name]) for name in doors}
+        label = f"ros2 {' '.join(argv[:2])}"
+        print(f"{label:32s}" + "".join(f"{medians[name]:28.1f}" for name in doors))
+    print(f"{'slowest verb':32s}" + "".join(f"{worst[name]:28.1f}" for name in doors))
+    print(f"(n={runs} per verb and door)")
 
 
 def _not_found(env: dict[str, str], runs: int) -> None:

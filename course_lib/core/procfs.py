@@ -37,6 +37,7 @@ __all__ = [
     "start_time",
     "stat_fields",
     "udp_ports",
+    "udp_socket_inodes",
     "unix_socket_paths",
 ]
 
@@ -158,3 +159,15 @@ def bound_udp_ports() -> set[int] | None:
         with contextlib.suppress(OSError):
             tables.append((PROC / "net" / name).read_text())
     return udp_ports(tables) if tables else None
+
+
+def udp_socket_inodes() -> set[str]:
+    """Return the UDP sockets of this network namespace as fd targets (`socket:[inode]`)."""
+    found = set()
+    for name in _UDP_TABLES:
+        with contextlib.suppress(OSError):
+            for line in (PROC / "net" / name).read_text().splitlines()[1:]:
+                fields = line.split()
+                if len(fields) > 9:
+                    found.add(f"socket:[{fields[9]}]")
+    return found

@@ -25,8 +25,10 @@ from .discovery import (
     GraphView,
     domain_newcomers,
     participant_prefix,
+    prefix_pid,
     profile_timing,
     read_bound_participants,
+    wait_joined,
     wait_settled,
 )
 
@@ -127,7 +129,22 @@ class RosClient:
 
         `min_age_s` is `--spin-time`: a client younger than that waits until it is that old.
         """
-        wait_settled(self.graph_view, born=self._born, timing=self._timing, min_age_s=min_age_s)
+        wait_settled(
+            self.graph_view,
+            born=self._born,
+            timing=self._timing,
+            min_age_s=min_age_s,
+            starting=self._starting,
+        )
+
+    def _starting(self) -> frozenset[int]:
+        return frozenset(domain_newcomers(self._domain_id, joined=True))
+
+    def wait_joined(self) -> None:
+        """Wait (a warm client) until a node whose process is starting has been seen whole:
+        what a lookup counts (publishers, services) is then all of it, every time."""
+        if self.age() >= self._timing.warm_s:
+            wait_joined(self.graph_view, self._timing, self._starting, time.monotonic, time.sleep)
 
     def wait_all_seen(self, timeout: float) -> bool:
         """Wait (at most `timeout` s) until this client has discovered every participant its
@@ -156,12 +173,11 @@ class RosClient:
         ]
         unknown = sum(info.node_name == UNKNOWN_NODE for info in endpoints)
         bound = read_bound_participants(self._domain_id)
-        missing = None
-        if bound is not None:
-            seen = {participant_prefix(info.endpoint_gid) for info in endpoints}
-            missing = max(0, bound - len(seen))
+        seen = {participant_prefix(info.endpoint_gid) for info in endpoints}
+        missing = None if bound is None else max(0, bound - len(seen))
         nodes = frozenset(n.full_name for n in self.node_names(include_hidden=True))
-        return GraphView(nodes, frozenset(topics), unknown, missing)
+        pids = frozenset(prefix_pid(prefix) for prefix in seen)
+        return GraphView(nodes, frozenset(topics), unknown, missing, len(endpoints), pids)
 
     @property
     def uses_sim_time(self) -> bool:

@@ -208,3 +208,22 @@ def test_launch_of_a_missing_package_lists_only_the_callers_prefixes(tmp_path) -
     case = CASES["launch_missing_package"]
     expected = case["stderr"].replace("['install', '<venv>']", repr([str(tmp_path), sys.prefix]))
     assert (proc.stdout, proc.stderr, proc.returncode) == ("", expected, case["exit"])
+
+
+@pytest.mark.parametrize("round_", range(3))
+def test_a_command_moments_after_a_node_starts_counts_all_of_it(
+    ros_session, daemon, round_
+) -> None:  # type: ignore[no-untyped-def]
+    assert wait_until(client().graph_complete, 20), "the domain never settled"
+    env = {**console_env(ros_session), NO_FALLBACK_ENV: "1"}
+    script = str(GOLDEN / "nodes" / "param_vel_node.py")
+    names = ["--ros-args", "-r", "__node:=fresh_vel_node", "-r", "cmd_vel:=fresh_cmd_vel"]
+    child = ros_session.spawn([sys.executable, script, *names], name="fresh_vel")
+    try:
+        info = _quick(env, "ros2 topic info /fresh_cmd_vel")
+        services = _quick(env, "ros2 service list")
+    finally:
+        child.stop()
+    expected = "Type: geometry_msgs/msg/Twist\nPublisher count: 1\nSubscription count: 0\n"
+    assert (info.stdout, info.stderr, info.returncode) == (expected, "", 0)
+    assert services.stdout.count("/fresh_vel_node/") == 7, services.stdout
