@@ -224,7 +224,12 @@ class RosClient:
         view = self.graph_view()
         if view.missing_participants != 0 or view.unknown_endpoints:
             return False  # None: /proc cannot count participants here
-        return not domain_newcomers(self._domain_id)
+        if domain_newcomers(self._domain_id):
+            return False  # a process of the domain is starting: its node may follow
+        # a young process that joined: seen by its pid (a count is fooled by the lingering
+        # participant of a node just stopped)
+        young = domain_newcomers(self._domain_id, joined=True)
+        return all(pid & 0xFFFF in view.participant_pids for pid in young)
 
     def topics(self, *, include_hidden: bool = False) -> list[TopicInfo]:
         """Return the topics with their types, in the graph's order."""

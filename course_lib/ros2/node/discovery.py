@@ -261,7 +261,8 @@ def domain_newcomers(
     domain_id: int, *, max_age_s: float = NEWCOMER_S, joined: bool = False
 ) -> list[int]:
     """Return the pids of this host's processes in `domain_id` started under `max_age_s`
-    ago that may be starting a node but have not joined DDS yet (no UDP socket open);
+    ago that may be starting a node but have not joined DDS yet (no participant port bound:
+    once bound, the participant is counted by read_bound_participants);
     this process, shells and `ros2` query commands left out. With `joined`, those that
     have joined too.
 
@@ -275,7 +276,7 @@ def domain_newcomers(
         return []
     tick = os.sysconf("SC_CLK_TCK")
     me, found = os.getpid(), []
-    udp: set[str] | None = None
+    udp: dict[str, int] | None = None
     for pid in procfs.pids():
         start = procfs.start_time(pid)
         if pid == me or start is None or uptime - int(start) / tick > max_age_s:
@@ -291,6 +292,7 @@ def domain_newcomers(
             found.append(pid)
             continue
         udp = procfs.udp_socket_inodes() if udp is None else udp
-        if not udp.intersection(procfs.fd_targets(pid)):
+        ports = [udp[t] for t in procfs.fd_targets(pid) if t in udp]
+        if not bound_participants(domain_id, ports):  # its participant's port: counted
             found.append(pid)
     return found

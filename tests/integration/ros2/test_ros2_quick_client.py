@@ -181,7 +181,8 @@ def test_wrong_node_name_is_answered_at_once_when_the_domain_is_settled(  # type
     assert took < DISCOVERY_WAIT_S, took
 
 
-def test_a_node_started_just_before_the_command_is_found(ros_session, daemon) -> None:  # type: ignore[no-untyped-def]
+@pytest.mark.parametrize("round_", range(5))
+def test_a_node_started_just_before_the_command_is_found(ros_session, daemon, round_) -> None:  # type: ignore[no-untyped-def]
     assert wait_until(client().graph_complete, 20), "the domain never settled"
     env = {**console_env(ros_session), NO_FALLBACK_ENV: "1"}
     script = str(GOLDEN / "nodes" / "param_vel_node.py")
