@@ -238,6 +238,9 @@ def wait_settled(
 # A process of the domain younger than this may still be starting its node (a Python
 # importing rclpy before its participant binds: about a second, several on a loaded machine).
 NEWCOMER_S = 6.0
+# ... but one that has not bound a participant's port by this age is taken for a process
+# that is no ROS node (a learner's plain script): it holds no command longer.
+UNJOINED_S = 3.0
 # A new node creates its endpoints one by one as its constructor runs (its publishers after
 # its parameter services): it is taken as whole once the graph stayed the same this long.
 NEWCOMER_QUIET_S = 0.5
@@ -249,7 +252,8 @@ def ros2_client_command(cmdline: Sequence[str]) -> bool:
     from it (`ros2 param get` asks; `ros2 run` and `ros2 launch` start their nodes as
     child processes, which are newcomers themselves)."""
     return any(
-        arg in _CLIENT_MODULES or (arg.rpartition("/")[2] == "ros2" and i <= 2)
+        any(module in arg for module in _CLIENT_MODULES)
+        or (arg.rpartition("/")[2] == "ros2" and i <= 2)
         for i, arg in enumerate(cmdline)
     )
 
@@ -291,6 +295,8 @@ def domain_newcomers(
         if joined:
             found.append(pid)
             continue
+        if uptime - int(start) / tick > UNJOINED_S:
+            continue  # no participant after this long: not a node starting (a plain script)
         udp = procfs.udp_socket_inodes() if udp is None else udp
         ports = [udp[t] for t in procfs.fd_targets(pid) if t in udp]
         if not bound_participants(domain_id, ports):  # its participant's port: counted

@@ -226,5 +226,7 @@ def test_ros2_commands_are_not_nodes_starting() -> None:
     assert ros2_client_command((f"{venv}/python", "-S", f"{venv}/ros2", "param", "get", "/n"))
     assert ros2_client_command((f"{venv}/python", f"{venv}/ros2", "topic", "list"))
     assert ros2_client_command(("python", "-P", "-m", "course_lib.ros2.command.cli", "node"))
+    script = "import sys; from course_lib.ros2.command.cli import main; sys.exit(main())"
+    assert ros2_client_command(("python", "-c", script, "node", "list"))
     assert ros2_client_command((f"{venv}/python", f"{venv}/ros2", "run", "pkg", "exe"))
     assert not ros2_client_command(("python3", "param_vel_node.py"))
