@@ -4,6 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP_ENV := $(VENV)/.installed
 STAMP_WS := rosject/install/.built
+STAMP_ROS2 := $(VENV)/.ros2-launcher
 # colcon --symlink-install links every source and installed file, so editing one needs no
 # rebuild: only the build description does (CMake packages: their interface files and
 # templates too), and a launch/ or config/ folder whose files were added or removed (setup.py
@@ -15,7 +16,10 @@ ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosj
 lab: setup  ## Check config/, then start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
 	$(PY) -m course_lib lab $(EXTRA)
 
-setup: $(STAMP_ENV) $(STAMP_WS)  ## Build the environment and the ROS workspace
+setup: $(STAMP_ENV) $(STAMP_WS) $(STAMP_ROS2)  ## Build the environment and the ROS workspace
+	@# The course's bytecode, compiled here once: no command depends on writing a cache (a
+	@# hub's shared environment is read-only to learners; PYTHONDONTWRITEBYTECODE may be set).
+	@$(PY) -m compileall -q -j 0 course_lib
 
 hub: setup  ## Start the class's JupyterHub (as root: `sudo make hub`; settings in config/hub.yaml)
 	$(PY) -m course_lib hub $(EXTRA)
@@ -59,6 +63,12 @@ $(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --disable-pip-version-check -r environment.txt
 	$(PY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
+	@touch $@
+
+# The venv's `ros2` starts Python once (course_lib/ros2/command/quick.py): after every pip
+# install, which writes its own console script there.
+$(STAMP_ROS2): $(STAMP_ENV) course_lib/ros2/command/quick.py
+	$(PY) -m course_lib.ros2.command.quick --install-launcher
 	@touch $@
 
 $(STAMP_WS): $(STAMP_ENV) $(ROSJECT_SOURCES) course_lib/tools/workspace.py course_lib/cmake/wheel_fixups.cmake

@@ -1,20 +1,25 @@
 """Measure the `ros2` doors: notebook magic and terminal command round trips, node discovery.
 
-Run: .venv/bin/python bench/ros2_latency.py [--runs N]
+Run: .venv/bin/python bench/ros2_latency.py [--runs N] [--terminal-only]
 Prints medians (and max) in milliseconds; the real Jazzy tools take 1.4-2.0 s per `param get`.
+The terminal part runs the clone's `.venv/bin/ros2` for every verb of the golden transcripts,
+beside `python -c pass` in the same run (issue 23's target: every verb within 50 ms on a
+quiet machine), and times "Node not found" once the daemon has known the domain a while.
+BENCH_REPO=<another clone> measures that clone's code and `ros2` (a before/after table).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import statistics
 import subprocess
 import sys
 import time
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(os.environ.get("BENCH_REPO") or Path(__file__).resolve().parents[1]).resolve()
 sys.path.insert(0, str(REPO))
 
 from course_lib.core.waiting import wait_until  # noqa: E402
@@ -54,15 +59,95 @@ def _report(label: str, times: list[float], real: str = "") -> None:
     )
 
 
-def _terminal(env: dict[str, str], *args: str) -> None:
+# The console script pip writes for `ros2` (what the venv's `ros2` was before issue 23): a
+# Python that the ROS wheels' bootstrapper re-executes, then the full command.
+FULL = "import sys; from course_lib.ros2.command.cli import main; sys.exit(main())"
+
+
+def _terminal(env: dict[str, str], *args: str, code: int = 0, full: bool = False) -> None:
+    bin_dir = REPO / ".venv" / "bin"
+    start = [str(bin_dir / "python"), "-c", FULL] if full else [str(bin_dir / "ros2")]
     proc = subprocess.run(
-        [str(REPO / ".venv" / "bin" / "ros2"), *args],
+        [*start, *args],
         env=env,
         capture_output=True,
         text=True,
         check=False,
+        cwd=str(GOLDEN.parent),
     )
-    assert proc.returncode == 0, proc.stderr
+    assert proc.returncode == code, (args, proc.stdout, proc.stderr)
+
+
+# One command per verb of the golden transcripts (tests/golden/ros2) the daemon can answer
+# with the tutorial node running; `run` and `launch` start processes and are left out.
+VERBS: list[tuple[str, ...]] = [
+    ("node", "list"),
+    ("node", "info", "/param_vel_node"),
+    ("param", "get", "/param_vel_node", "velocity"),
+    ("param", "set", "/param_vel_node", "velocity", "0.0"),
+    ("param", "list", "/param_vel_node"),
+    ("param", "describe", "/param_vel_node", "velocity"),
+    ("param", "dump", "/param_vel_node"),
+    ("param", "load", "/param_vel_node", "params/vel_wildcard.yaml"),
+    ("topic", "list"),
+    ("topic", "info", "/cmd_vel"),
+    ("topic", "type", "/cmd_vel"),
+    ("topic", "find", "geometry_msgs/msg/Twist"),
+    ("topic", "echo", "/cmd_vel", "--once"),
+    ("service", "list"),
+    ("service", "type", "/param_vel_node/get_parameters"),
+    ("service", "find", "rcl_interfaces/srv/GetParameters"),
+    ("service", "call", "/param_vel_node/list_parameters", "rcl_interfaces/srv/ListParameters"),
+    ("interface", "show", "rcl_interfaces/msg/ParameterDescriptor"),
+    ("interface", "list"),
+    ("interface", "package", "rcl_interfaces"),
+    ("pkg", "prefix", "parameter_tests"),
+    ("pkg", "executables", "parameter_tests"),
+]
+
+
+def _every_verb(env: dict[str, str], runs: int) -> None:
+    """Terminal medians of every verb: the console script as it was, the venv's `ros2`, and
+    `python -c pass` (the interpreter alone, bootstrapper included), interleaved per run."""
+    python = str(REPO / ".venv" / "bin" / "python")
+    _report(
+        "terminal python -S -c pass",
+        _timed(lambda: subprocess.run([python, "-S", "-c", "pass"], env=env, check=True), runs),
+    )
+
+    def interpreter() -> None:
+        subprocess.run([python, "-c", "pass"], env=env, check=True)
+
+    doors = {
+        "console script (2 starts)": lambda argv: _terminal(env, *argv, full=True),
+        "venv ros2": lambda argv: _terminal(env, *argv),
+        "python -c pass": lambda _argv: interpreter(),
+    }
+    print(f"{'median ms':32s}" + "".join(f"{name:>28s}" for name in doors))
+    worst = dict.fromkeys(doors, 0.0)
+    for argv in VERBS:
+        _terminal(env, *argv)  # warm
+        times: dict[str, list[float]] = {name: [] for name in doors}
+        for _ in range(runs):  # interleaved: every door sees the same load
+            for name, door in doors.items():
+                started = time.perf_counter()
+                door(argv)
+                times[name].append(time.perf_counter() - started)
+        medians = {name: statistics.median(t) * 1e3 for name, t in times.items()}
+        worst = {name: max(worst[name], medians[name]) for name in doors}
+        label = f"ros2 {' '.join(argv[:2])}"
+        print(f"{label:32s}" + "".join(f"{medians[name]:28.1f}" for name in doors))
+    print(f"{'slowest verb':32s}" + "".join(f"{worst[name]:28.1f}" for name in doors))
+    print(f"(n={runs} per verb and door)")
+
+
+def _not_found(env: dict[str, str], runs: int) -> None:
+    """Time `ros2 param get /no_such_node velocity` once the daemon knows the domain."""
+    time.sleep(7.0)  # settled: the daemon warm, no process of the domain younger than 6 s
+    _report(
+        "terminal 'Node not found' (settled)",
+        _timed(lambda: _terminal(env, "param", "get", "/no_such_node", "velocity", code=1), runs),
+    )
 
 
 # The real tools for the part-2 verbs (tests/golden/ros2/cases_part2.json wall times).
@@ -105,15 +190,23 @@ def _part2(env: dict[str, str], runs: int) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--runs", type=int, default=30)
-    runs = parser.parse_args().runs
+    parser.add_argument("--terminal-only", action="store_true", help="only the terminal part")
+    options = parser.parse_args()
+    runs = options.runs
     session = get_session()
     env = {**session.env, "PYTHONPATH": str(REPO)}
+    env.pop("_ROS_WHEELS_BOOTSTRAP_COMPLETE", None)  # a terminal's environment: not yet set
     daemon = start_daemon(session.env)
     node = session.spawn([sys.executable, str(NODE)], name="vel")
     try:
         assert client().wait_for_node("/param_vel_node", include_hidden=False, timeout=10)
         assert wait_until(lambda: daemon_socket(session.domain_id).exists(), 15)
-        print(f"domain {session.domain_id}")
+        print(f"domain {session.domain_id}, code and `ros2` of {REPO.name}")
+        _terminal(env, "node", "list")  # the daemon answers
+        _every_verb(env, runs)
+        _not_found(env, max(3, runs // 3))
+        if options.terminal_only:
+            return
         _report(
             "magic  %ros2 param get",
             _timed(lambda: run_line("param get /param_vel_node velocity"), runs),

@@ -7,7 +7,6 @@ fast, and importing it never imports rclpy or mujoco.
 from __future__ import annotations
 
 from importlib import import_module
-from typing import Any
 
 _EXPORTS = {
     "CourseError": ".core.errors",
@@ -30,7 +29,7 @@ _EXPORTS = {
 __all__ = sorted(_EXPORTS)
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> object:  # not `Any`: importing typing costs a `ros2` start
     if name not in _EXPORTS:
         raise AttributeError(f"module 'course_lib' has no attribute {name!r}")
     return getattr(import_module(_EXPORTS[name], __name__), name)

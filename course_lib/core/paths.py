@@ -6,7 +6,6 @@ import contextlib
 import os
 import stat
 import sys
-import tempfile
 from pathlib import Path
 
 from .errors import RuntimeDirError
@@ -43,6 +42,16 @@ _SUN_PATH_MAX = 108  # bytes of a Unix socket path, its final NUL included
 _POSIX_TMP = Path(os.sep, "tmp")  # where Python's tempfile goes without TMPDIR: always short
 
 
+def _temp_dir() -> str:
+    """Return Python's temp folder; /tmp when no variable names one (as tempfile says then,
+    without importing it: the terminal's `ros2` client starts at interpreter speed)."""
+    if not any(os.environ.get(v) for v in ("TMPDIR", "TEMP", "TMP")):
+        return str(_POSIX_TMP)
+    import tempfile
+
+    return tempfile.gettempdir()
+
+
 def _runtime_candidates() -> list[Path]:
     """Return where the runtime folder may live, best first.
 
@@ -54,7 +63,7 @@ def _runtime_candidates() -> list[Path]:
     found = []
     if os.environ.get("XDG_RUNTIME_DIR"):
         found.append(Path(os.environ["XDG_RUNTIME_DIR"]) / "ros2-course")
-    found += [Path(tempfile.gettempdir()) / name, _POSIX_TMP / name]
+    found += [Path(_temp_dir()) / name, _POSIX_TMP / name]
     found.append(Path.home() / ".cache" / "ros2-course" / "run")
     return found
 

@@ -37,6 +37,7 @@ __all__ = [
     "start_time",
     "stat_fields",
     "udp_ports",
+    "udp_socket_inodes",
     "unix_socket_paths",
 ]
 
@@ -158,3 +159,15 @@ def bound_udp_ports() -> set[int] | None:
         with contextlib.suppress(OSError):
             tables.append((PROC / "net" / name).read_text())
     return udp_ports(tables) if tables else None
+
+
+def udp_socket_inodes() -> dict[str, int]:
+    """Return the UDP sockets of this network namespace: fd target (`socket:[inode]`) -> port."""
+    found = {}
+    for name in _UDP_TABLES:
+        with contextlib.suppress(OSError):
+            for line in (PROC / "net" / name).read_text().splitlines()[1:]:
+                fields = line.split()
+                if len(fields) > 9 and ":" in fields[1]:
+                    found[f"socket:[{fields[9]}]"] = int(fields[1].rsplit(":", 1)[1], 16)
+    return found

@@ -8,7 +8,6 @@ session's client node (course_lib.session.session) when they run.
 from __future__ import annotations
 
 import importlib
-from typing import Any
 
 _EXPORTS = {
     **dict.fromkeys(
@@ -53,7 +52,7 @@ _EXPORTS = {
 __all__ = sorted([*_EXPORTS, "start_daemon"])
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> object:  # not `Any`: importing typing costs a `ros2` start
     module = _EXPORTS.get(name)
     if module is None:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

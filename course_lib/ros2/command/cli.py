@@ -37,6 +37,10 @@ def _local(argv: list[str], domain: str | None, *, direct: bool = False) -> int:
     console = StreamingConsole(write, width=shutil.get_terminal_size().columns)
     env = _terminal_env(domain)
     if command_of(argv) == "launch":  # launch resolves packages through this process's env
+        from course_lib.ros2.verbs.launch import launch_env
+
+        words = argv[argv.index("launch") + 1 :]
+        env = launch_env(words, os.environ, env)
         os.environ.update(env)
     factory = _direct_client(argv, env) if direct else _in_process_client
     ctx = Context(console, factory, cwd=os.getcwd(), env=env)
@@ -60,18 +64,11 @@ def _direct_client(argv: list[str], env: dict[str, str]):  # type: ignore[no-unt
     return make
 
 
-def _maybe_option(word: str) -> bool:
-    """Return whether `word` may be --no-daemon or -s/--use-sim-time, abbreviated or grouped."""
-    if word.startswith("--"):
-        return len(word) > 4 and (
-            "--no-daemon".startswith(word) or "--use-sim-time".startswith(word)
-        )
-    return word.startswith("-") and word[1:].isalpha() and "s" in word
-
-
 def _own_node_options(argv: list[str]) -> tuple[bool, bool]:
     """Return (--no-daemon, --use-sim-time) as ros2cli parses argv (free when neither is given)."""
-    if not any(_maybe_option(word) for word in argv):
+    from course_lib.ros2.command.quick import maybe_own_node_option
+
+    if not any(maybe_own_node_option(word) for word in argv):
         return False, False
     from course_lib.ros2.command import parsers
 

@@ -16,6 +16,7 @@ import os
 import select
 import signal
 import socket
+import struct
 import threading
 import time
 from collections.abc import Mapping
@@ -86,10 +87,41 @@ class _Connection:
 
             console = StreamingConsole(write, width=int(request.get("width", 80)))
             threading.Thread(target=self.watch_hang_up, args=(console,), daemon=True).start()
-            ctx = Context(console, self.client_factory, cwd=request.get("cwd"))
+            env = _terminal_env(request.get("env"))
+            ctx = Context(console, self.client_factory, cwd=request.get("cwd"), env=env)
             with acting_door("terminal"):  # only the terminal's `ros2` asks the daemon
                 code = execute(list(request["argv"]), ctx)
             self.send({"exit": code})
+
+
+def _terminal_env(sent: Any) -> dict[str, str]:
+    """Return the environment a terminal's command runs with, as the terminal would make it.
+
+    The verbs that read the ament index (pkg, interface) see the terminal's
+    AMENT_PREFIX_PATH (a workspace it sourced) with the course's workspace underlaid; the
+    graph verbs use the daemon's own node. A client that sent no environment gets none.
+    """
+    if not isinstance(sent, dict):
+        return {}
+    from ...session.session import session_env
+
+    env = {str(k): str(v) for k, v in sent.items()}
+    return session_env(int(os.environ.get("ROS_DOMAIN_ID") or 0), env)
+
+
+def same_user(conn: socket.socket) -> bool:
+    """Return whether the peer of a Unix connection runs as this process's user.
+
+    The socket is private (mode 600 in a private folder); this is the second lock: a
+    connection from another user (a folder opened by mistake, a shared /tmp) is closed
+    before a byte of it is read.
+    """
+    try:
+        creds = conn.getsockopt(socket.SOL_SOCKET, socket.SO_PEERCRED, struct.calcsize("3i"))
+    except OSError:
+        return False
+    _pid, uid, _gid = struct.unpack("3i", creds)
+    return uid == os.getuid()
 
 
 def _answers(path: str) -> bool:
@@ -171,6 +203,9 @@ def _serve_forever(
                 continue
             except OSError:
                 return  # woken by a shutdown request
+            if not same_user(conn):
+                conn.close()
+                continue
             conn.setblocking(True)
             last = time.monotonic()
             handler = _Connection(conn, lambda: client, stop, server)

@@ -25,9 +25,12 @@ from ..values import VALUE_FIELDS, ParamValue, journal_value, value_from_msg
 from .discovery import (
     UNKNOWN_NODE,
     GraphView,
+    domain_newcomers,
     participant_prefix,
+    prefix_pid,
     profile_timing,
     read_bound_participants,
+    wait_joined,
     wait_settled,
     without_ghosts,
 )
@@ -40,6 +43,9 @@ DISCOVERY_WAIT_S = 2.5
 # Until this age, a node may still be unknown to a fresh client (Fast DDS re-announces every
 # 3 s by default), so node lookups wait at least until the client is this old.
 YOUNG_CLIENT_S = 4.0
+# A node missing from a graph known whole for this long is not there: "Node not found" at
+# once, not after DISCOVERY_WAIT_S (a just-started node is waited for: graph_complete).
+SETTLED_QUIET_S = 0.15
 SERVICE_WAIT_S = 5.0
 CALL_TIMEOUT_S = 10.0
 # First wait for a reply before re-sending a read (a reply normally takes about 1 ms).
@@ -126,7 +132,22 @@ class RosClient:
 
         `min_age_s` is `--spin-time`: a client younger than that waits until it is that old.
         """
-        wait_settled(self.graph_view, born=self._born, timing=self._timing, min_age_s=min_age_s)
+        wait_settled(
+            self.graph_view,
+            born=self._born,
+            timing=self._timing,
+            min_age_s=min_age_s,
+            starting=self._starting,
+        )
+
+    def _starting(self) -> frozenset[int]:
+        return frozenset(domain_newcomers(self._domain_id, joined=True))
+
+    def wait_joined(self) -> None:
+        """Wait (a warm client) until a node whose process is starting has been seen whole:
+        what a lookup counts (publishers, services) is then all of it, every time."""
+        if self.age() >= self._timing.warm_s:
+            wait_joined(self.graph_view, self._timing, self._starting, time.monotonic, time.sleep)
 
     def wait_all_seen(self, timeout: float) -> bool:
         """Wait (at most `timeout` s) until this client has discovered every participant its
@@ -155,12 +176,11 @@ class RosClient:
         ]
         unknown = sum(info.node_name == UNKNOWN_NODE for info in endpoints)
         bound = read_bound_participants(self._domain_id)
-        missing = None
-        if bound is not None:
-            seen = {participant_prefix(info.endpoint_gid) for info in endpoints}
-            missing = max(0, bound - len(seen))
+        seen = {participant_prefix(info.endpoint_gid) for info in endpoints}
+        missing = None if bound is None else max(0, bound - len(seen))
         nodes = frozenset(n.full_name for n in self.node_names(include_hidden=True))
-        return GraphView(nodes, frozenset(topics), unknown, missing)
+        pids = frozenset(prefix_pid(prefix) for prefix in seen)
+        return GraphView(nodes, frozenset(topics), unknown, missing, len(endpoints), pids)
 
     @property
     def uses_sim_time(self) -> bool:
@@ -208,8 +228,37 @@ class RosClient:
             names = self.node_names(include_hidden=include_hidden)
             return full_name in {n.full_name for n in names}
 
-        age = time.monotonic() - self._born
-        return wait_until(found, max(float(timeout), DISCOVERY_WAIT_S, YOUNG_CLIENT_S - age))
+        start = time.monotonic()
+        deadline = start + max(float(timeout), DISCOVERY_WAIT_S, YOUNG_CLIENT_S - self.age())
+        complete_since: float | None = None
+        while not found():
+            now = time.monotonic()
+            if now >= deadline:
+                return False
+            if self.graph_complete():
+                complete_since = now if complete_since is None else complete_since
+                if now - complete_since >= SETTLED_QUIET_S:
+                    return False  # the whole domain is known, and the node is not in it
+            else:
+                complete_since = None
+            time.sleep(_POLL_S)
+        return True
+
+    def graph_complete(self) -> bool:
+        """Return whether this client knows the whole domain: it is warm, has seen every
+        participant bound on this host with every endpoint's node named, and no process of
+        the domain is young enough to be starting a node that has not joined DDS yet."""
+        if self.age() < self._timing.warm_s:
+            return False
+        view = self.graph_view()
+        if view.missing_participants != 0 or view.unknown_endpoints:
+            return False  # None: /proc cannot count participants here
+        if domain_newcomers(self._domain_id):
+            return False  # a process of the domain is starting: its node may follow
+        # a young process that joined: seen by its pid (a count is fooled by the lingering
+        # participant of a node just stopped)
+        young = domain_newcomers(self._domain_id, joined=True)
+        return all(pid & 0xFFFF in view.participant_pids for pid in young)
 
     def topics(self, *, include_hidden: bool = False) -> list[TopicInfo]:
         """Return the topics with their types, in the graph's order."""

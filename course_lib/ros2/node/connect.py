@@ -8,19 +8,17 @@ from __future__ import annotations
 import contextlib
 import json
 import os
-import shutil
 import socket
 import subprocess
 import sys
 import time
 from collections.abc import Mapping
 from pathlib import Path
-from typing import TextIO
 
 from ...core import procfs
-from ...core.paths import runtime_dir
 from ...core.waiting import wait_until
 from ...processes.children import OWNER_ENV, owner_tag
+from .wire import DaemonUnavailable, connect, daemon_lock, daemon_socket, request
 
 __all__ = [
     "DaemonUnavailable",
@@ -39,30 +37,6 @@ STOP_TIMEOUT_S = 10.0
 IDLE_ENV = "COURSE_ROS2_DAEMON_IDLE_S"
 DETACHED_IDLE_S = "600"
 SHUTDOWN = "shutdown"
-
-
-class DaemonUnavailable(Exception):
-    """No daemon answers on this domain's socket (and none could be started)."""
-
-
-def daemon_socket(domain_id: int | str) -> Path:
-    """Return the socket path of the daemon serving `domain_id`."""
-    return runtime_dir() / f"ros2-daemon-{domain_id}.sock"
-
-
-def daemon_lock(domain_id: int | str) -> Path:
-    """Return the lock file a daemon of `domain_id` holds for as long as it lives."""
-    return runtime_dir() / f"ros2-daemon-{domain_id}.lock"
-
-
-def _connect(path: Path) -> socket.socket:
-    sock = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
-    try:
-        sock.connect(str(path))
-    except OSError:
-        sock.close()
-        raise DaemonUnavailable(str(path)) from None
-    return sock
 
 
 def daemon_argv() -> list[str]:
@@ -110,11 +84,11 @@ def spawn_detached(env: Mapping[str, str]) -> None:
     )
 
 
-def _wait_connect(path: Path, timeout: float) -> socket.socket:
+def _waitconnect(path: Path, timeout: float) -> socket.socket:
     deadline = time.monotonic() + timeout
     while True:
         try:
-            return _connect(path)
+            return connect(path)
         except DaemonUnavailable:
             if time.monotonic() >= deadline:
                 raise
@@ -125,15 +99,15 @@ def connect_or_start(domain_id: str, env: Mapping[str, str]) -> socket.socket:
     """Return a connection to this domain's daemon, starting one if none answers."""
     path = daemon_socket(domain_id)
     with contextlib.suppress(DaemonUnavailable):
-        return _connect(path)
+        return connect(path)
     spawn_detached(env)
-    return _wait_connect(path, START_TIMEOUT_S)
+    return _waitconnect(path, START_TIMEOUT_S)
 
 
 def daemon_running(domain_id: int | str) -> bool:
     """Return whether a daemon answers for `domain_id`."""
     try:
-        _connect(daemon_socket(domain_id)).close()
+        connect(daemon_socket(domain_id)).close()
     except DaemonUnavailable:
         return False
     return True
@@ -143,12 +117,12 @@ def start_detached(env: Mapping[str, str]) -> bool:
     """Start env's domain's daemon and wait until it answers; False if one was running."""
     path = daemon_socket(env["ROS_DOMAIN_ID"])
     try:
-        _connect(path).close()
+        connect(path).close()
         return False
     except DaemonUnavailable:
         pass
     spawn_detached(env)
-    _wait_connect(path, START_TIMEOUT_S).close()
+    _waitconnect(path, START_TIMEOUT_S).close()
     return True
 
 
@@ -158,7 +132,7 @@ def stop_daemon(domain_id: int | str, *, timeout: float = STOP_TIMEOUT_S) -> boo
     Raises TimeoutError when it is still there after `timeout` seconds.
     """
     try:
-        sock = _connect(daemon_socket(domain_id))
+        sock = connect(daemon_socket(domain_id))
     except DaemonUnavailable:
         return False
     with sock, sock.makefile("r", encoding="utf-8") as reader:
@@ -173,28 +147,6 @@ def stop_daemon(domain_id: int | str, *, timeout: float = STOP_TIMEOUT_S) -> boo
             message="Timed out waiting for daemon to shutdown",
         )
     return True
-
-
-def request(
-    sock: socket.socket, argv: list[str], *, cwd: str, stdout: TextIO, stderr: TextIO
-) -> int:
-    """Send one command, copy its output as it comes, and return its exit code."""
-    width = shutil.get_terminal_size().columns
-    payload = {"argv": argv, "cwd": cwd, "width": width}
-    sock.sendall(json.dumps(payload).encode() + b"\n")
-    reader = sock.makefile("r", encoding="utf-8")
-    try:
-        for line in reader:
-            frame = json.loads(line)
-            if "exit" in frame:
-                return int(frame["exit"])
-            stream = stdout if "o" in frame else stderr
-            stream.write(frame.get("o", frame.get("e", "")))
-            stream.flush()
-    finally:
-        reader.close()
-        sock.close()
-    raise DaemonUnavailable("the daemon closed the connection")
 
 
 def daemon_pids(domain_id: int | str) -> list[int]:

@@ -16,6 +16,7 @@ most that. The counting and the rules are pure; reading /proc is one small funct
 
 from __future__ import annotations
 
+import os
 import time
 from collections import Counter
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -31,8 +32,10 @@ __all__ = [
     "NAME_WAIT_S",
     "DiscoveryTiming",
     "GraphView",
+    "domain_newcomers",
     "requested_spin_time",
     "timing_from_profile",
+    "wait_joined",
     "wait_settled",
     "without_ghosts",
 ]
@@ -84,11 +87,19 @@ class GraphView:
     topics: frozenset[str]
     unknown_endpoints: int = 0  # endpoints whose node's name has not arrived
     missing_participants: int | None = None  # bound on this host, not seen; None: unknown
+    endpoints: int = 0  # every endpoint seen (a new publisher on a known topic is a change)
+    # the processes whose participants are seen (Fast DDS: the low 16 bits of each pid)
+    participant_pids: frozenset[int] = frozenset()
 
 
 def participant_prefix(endpoint_gid: Sequence[int]) -> tuple[int, ...]:
     """Return the participant part (GUID prefix) of a DDS endpoint's GID."""
     return tuple(endpoint_gid[:12])
+
+
+def prefix_pid(prefix: Sequence[int]) -> int:
+    """Return the (low 16 bits of the) pid a Fast DDS GUID prefix names: bytes 4-5."""
+    return prefix[4] | prefix[5] << 8
 
 
 def bound_participants(domain_id: int, ports: Iterable[int]) -> int:
@@ -147,6 +158,37 @@ def profile_timing(path: str | Path | None) -> DiscoveryTiming:
 DEFAULT_TIMING = timing_from_profile(None)
 
 
+def wait_joined(
+    view: Callable[[], GraphView],
+    timing: DiscoveryTiming,
+    starting: Callable[[], frozenset[int]],
+    clock: Callable[[], float],
+    sleep: Callable[[float], None],
+) -> None:
+    """Wait (a warm client) until every young process of the domain (`starting()`: their
+    pids, re-read as they age) is seen as a participant with its endpoints named, and the
+    graph stayed the same for NEWCOMER_QUIET_S; at most NEWCOMER_S (a process never joining
+    DDS)."""
+    start = clock()
+    young = {pid & 0xFFFF for pid in starting()}
+    if not young:
+        return  # no process of the domain is young: nothing is joining
+    current = view()
+    changed = start
+    polls = 0
+    while clock() - start < NEWCOMER_S:
+        joined = young <= current.participant_pids and not current.unknown_endpoints
+        if joined and clock() - changed >= max(timing.quiet_s, NEWCOMER_QUIET_S):
+            return
+        sleep(POLL_S)
+        polls += 1
+        if polls % 10 == 0:  # a process that grew old without joining is no newcomer
+            young = {pid & 0xFFFF for pid in starting()}
+        seen = view()
+        if seen != current:
+            current, changed = seen, clock()
+
+
 def wait_settled(
     view: Callable[[], GraphView],
     *,
@@ -155,6 +197,7 @@ def wait_settled(
     min_age_s: float = 0.0,
     clock: Callable[[], float] = time.monotonic,
     sleep: Callable[[float], None] = time.sleep,
+    starting: Callable[[], frozenset[int]] | None = None,
 ) -> GraphView:
     """Wait until a client node born at `born` sees the whole graph; return that view.
 
@@ -163,8 +206,14 @@ def wait_settled(
     `quiet_s`; one that cannot waits until it is `floor_s` old (and quiet). `min_age_s`
     (`--spin-time`) is a minimum age. Nodes known by their endpoints only are waited for,
     and participants not seen yet while the client is young: at most `unknown_wait_s`, or
-    NAME_WAIT_S for a node whose endpoints are seen but whose name has not arrived.
+    NAME_WAIT_S for a node whose endpoints are seen but whose name has not arrived. A warm
+    client waits too while a young process of the domain exists (`starting()`): until
+    each one's participant is seen, its endpoints named, and the graph stayed the same for
+    `quiet_s`; at most NEWCOMER_S. So a command run moments after
+    a node started counts that node's endpoints, every time.
     """
+    if starting is not None and clock() - born >= timing.warm_s:
+        wait_joined(view, timing, starting, clock, sleep)
     start = clock()
     current = view()
     counting = current.missing_participants is not None
@@ -186,6 +235,75 @@ def wait_settled(
         seen = view()
         if seen != current:
             current, changed = seen, clock()
+
+
+# A process of the domain younger than this may still be starting its node (a Python
+# importing rclpy before its participant binds: about a second, several on a loaded machine).
+NEWCOMER_S = 6.0
+# ... but one that has not bound a participant's port by this age is taken for a process
+# that is no ROS node (a learner's plain script): it holds no command longer.
+UNJOINED_S = 3.0
+# A new node creates its endpoints one by one as its constructor runs (its publishers after
+# its parameter services): it is taken as whole once the graph stayed the same this long.
+NEWCOMER_QUIET_S = 0.5
+_CLIENT_MODULES = ("course_lib.ros2.command.cli", "course_lib.ros2.command.quick")
+
+
+def ros2_client_command(cmdline: Sequence[str]) -> bool:
+    """Return whether a command line is a course `ros2` command: no node of its own joins
+    from it (`ros2 param get` asks; `ros2 run` and `ros2 launch` start their nodes as
+    child processes, which are newcomers themselves)."""
+    return any(
+        any(module in arg for module in _CLIENT_MODULES)
+        or (arg.rpartition("/")[2] == "ros2" and i <= 2)
+        for i, arg in enumerate(cmdline)
+    )
+
+
+_SHELLS = frozenset({"bash", "sh", "dash", "zsh", "fish", "tmux", "screen"})
+
+
+def domain_newcomers(
+    domain_id: int, *, max_age_s: float = NEWCOMER_S, joined: bool = False
+) -> list[int]:
+    """Return the pids of this host's processes in `domain_id` started under `max_age_s`
+    ago that may be starting a node but have not joined DDS yet (no participant port bound:
+    once bound, the participant is counted by read_bound_participants);
+    this process, shells and `ros2` query commands left out. With `joined`, those that
+    have joined too.
+
+    What a settled graph cannot show yet: a node whose process has not joined DDS. The
+    processes of a domain carry its ROS_DOMAIN_ID (the course starts every one with it);
+    one that has joined is counted among the bound participants instead.
+    """
+    try:
+        uptime = float(procfs.PROC.joinpath("uptime").read_text().split()[0])
+    except (OSError, ValueError, IndexError):
+        return []
+    tick = os.sysconf("SC_CLK_TCK")
+    me, found = os.getpid(), []
+    udp: dict[str, int] | None = None
+    for pid in procfs.pids():
+        start = procfs.start_time(pid)
+        if pid == me or start is None or uptime - int(start) / tick > max_age_s:
+            continue
+        if procfs.environ(pid).get("ROS_DOMAIN_ID", "").strip() != str(domain_id):
+            continue
+        cmdline = procfs.cmdline(pid) or ()
+        if not cmdline or cmdline[0].rpartition("/")[2] in _SHELLS:
+            continue
+        if ros2_client_command(cmdline):
+            continue
+        if joined:
+            found.append(pid)
+            continue
+        if uptime - int(start) / tick > UNJOINED_S:
+            continue  # no participant after this long: not a node starting (a plain script)
+        udp = procfs.udp_socket_inodes() if udp is None else udp
+        ports = [udp[t] for t in procfs.fd_targets(pid) if t in udp]
+        if not bound_participants(domain_id, ports):  # its participant's port: counted
+            found.append(pid)
+    return found
 
 
 def without_ghosts(

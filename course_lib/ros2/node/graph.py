@@ -57,5 +57,6 @@ def lookup(client: Any, find: Any) -> Any:
             found.append(answer)
         return answer is not None
 
+    client.wait_joined()  # a node starting now: count all of it, not what arrived so far
     wait_until(look, max(0.0, YOUNG_CLIENT_S - client.age()))
     return found[0] if found else None

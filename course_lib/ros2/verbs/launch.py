@@ -2,9 +2,41 @@
 
 from __future__ import annotations
 
+import os
+from collections.abc import Mapping
+
 from .context import Context
 
-__all__ = ["main"]
+__all__ = ["launch_env", "main"]
+
+_PREFIXES = "AMENT_PREFIX_PATH"
+
+
+def launch_env(argv: list[str], caller: Mapping[str, str], underlaid: Mapping[str, str]) -> dict:
+    """Return the environment `ros2 launch <argv>` runs with.
+
+    The course's workspace is underlaid (its packages launch from any terminal), unless the
+    package is found nowhere: then the caller's own AMENT_PREFIX_PATH, so that "not found"
+    lists the prefixes the caller's environment names, as the real tool's message does.
+    """
+    env = dict(underlaid)
+    if not caller.get(_PREFIXES):
+        return env
+    try:
+        from ...core.ament import package_prefix
+        from ...core.errors import PackageNotFoundError
+        from ...launch.command.cli import build_parser
+
+        args, _rest = build_parser().parse_known_args(argv)
+    except (ImportError, SystemExit):
+        return env  # launch itself says what is wrong with the command line
+    if os.path.isfile(args.package_name):
+        return env
+    try:
+        package_prefix(args.package_name, underlaid)
+    except PackageNotFoundError:
+        env[_PREFIXES] = caller[_PREFIXES]
+    return env
 
 
 def main(argv: list[str], ctx: Context) -> int:

@@ -13,6 +13,7 @@ from course_lib.ros2.command import parsers
 from course_lib.ros2.node.discovery import (
     DEFAULT_TIMING,
     NAME_WAIT_S,
+    NEWCOMER_S,
     DiscoveryTiming,
     GraphView,
     bound_participants,
@@ -66,7 +67,14 @@ class Graph:
     def view(self) -> GraphView:
         return [v for t, v in self.views if t <= self.now + 1e-9][-1]
 
-    def settle(self, *, born: float, min_age_s: float = 0.0, start: float = 0.0) -> GraphView:
+    def settle(
+        self,
+        *,
+        born: float,
+        min_age_s: float = 0.0,
+        start: float = 0.0,
+        starting: object = None,
+    ) -> GraphView:
         self.now = start
         return wait_settled(
             self.view,
@@ -75,6 +83,7 @@ class Graph:
             min_age_s=min_age_s,
             clock=self.clock,
             sleep=self.sleep,
+            starting=starting,  # type: ignore[arg-type]
         )
 
 
@@ -189,3 +198,54 @@ def test_a_name_listed_once_is_never_hidden() -> None:
 
     assert without_ghosts(["/a", "/b"], {}, settled=True) == ["/a", "/b"]
     assert without_ghosts(["/a", "/a"], {}, settled=True) == ["/a"]
+
+
+# A node that has just started (pid 4242), as a warm client sees it: its first endpoints
+# arrive at 0.6 s, its publisher on /cmd_vel at 0.65 s (one more on a topic already known).
+OLD = frozenset({7})
+JOINING = {
+    0.0: replace(NODE, endpoints=4, participant_pids=OLD),
+    0.6: replace(NODE, endpoints=9, participant_pids=OLD | {4242}),
+    0.65: replace(NODE, endpoints=10, participant_pids=OLD | {4242}),
+}
+
+
+def test_a_warm_client_waits_for_a_node_that_is_starting_and_counts_all_of_it() -> None:
+    graph = Graph(JOINING)
+    assert graph.settle(born=-60.0, starting=lambda: frozenset({4242})).endpoints == 10
+    assert 1.15 <= graph.now <= 1.2  # its last endpoint, then NEWCOMER_QUIET_S
+
+
+def test_a_warm_client_with_no_young_process_answers_at_once() -> None:
+    graph = Graph(JOINING)
+    assert graph.settle(born=-60.0, starting=frozenset).endpoints == 4
+    assert graph.now == 0.0
+
+
+def test_a_process_that_never_joins_holds_a_warm_client_bounded() -> None:
+    graph = Graph({0.0: NODE})
+    assert graph.settle(born=-60.0, starting=lambda: frozenset({99})) == NODE
+    assert graph.now == pytest.approx(NEWCOMER_S, abs=0.02)
+    ages = Graph({0.0: NODE})  # a process that grows old without joining stops the wait
+    young = iter([frozenset({99})] * 5 + [frozenset()] * 1000)
+    assert ages.settle(born=-60.0, starting=lambda: next(young)) == NODE
+    assert ages.now == pytest.approx(0.5, abs=0.05)  # next read of `starting` (10 polls)
+
+
+def test_a_participant_names_its_process() -> None:
+    from course_lib.ros2.node.discovery import prefix_pid
+
+    assert prefix_pid([1, 15, 120, 253, 0x99, 0x6A, 151, 51, 0, 0, 0, 0]) == 0x6A99
+
+
+def test_ros2_commands_are_not_nodes_starting() -> None:
+    from course_lib.ros2.node.discovery import ros2_client_command
+
+    venv = "/x/.venv/bin"
+    assert ros2_client_command((f"{venv}/python", "-S", f"{venv}/ros2", "param", "get", "/n"))
+    assert ros2_client_command((f"{venv}/python", f"{venv}/ros2", "topic", "list"))
+    assert ros2_client_command(("python", "-P", "-m", "course_lib.ros2.command.cli", "node"))
+    script = "import sys; from course_lib.ros2.command.cli import main; sys.exit(main())"
+    assert ros2_client_command(("python", "-c", script, "node", "list"))
+    assert ros2_client_command((f"{venv}/python", f"{venv}/ros2", "run", "pkg", "exe"))
+    assert not ros2_client_command(("python3", "param_vel_node.py"))
