@@ -67,6 +67,7 @@ class WorldKeeper:
             "viewer": {
                 "tag": owner_tag(viewer.process.pid),
                 "port": viewer.port,
+                "token": viewer.token,
                 "zmq_url": viewer.zmq_url,
             },
         }

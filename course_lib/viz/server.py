@@ -8,6 +8,13 @@ Its command socket (meshcat's ZMQ, which takes any scene command, a JavaScript c
 the learner's browser included) is a Unix socket in the user's private runtime folder
 (`ipc://`), never a TCP port: no other account on the host can connect to it.
 
+The web port (127.0.0.1) answers only a request that carries the server's token
+(`?view_token=`, not `token`, which Jupyter and JupyterHub read as theirs; made when it starts,
+printed in its `web_url` line and in no command line or environment):
+another account on the host can connect to the port, but neither load the view nor open its
+websocket, so it can neither read the scene nor send to it. The page passes its own token on
+to the websocket.
+
 The viewer's websocket accepts a browser page only from the origin it serves: the viewer page
 itself, or the Jupyter server (or hub) whose proxy forwards it, which keeps the request's Host.
 Other origins (any other web page open in the learner's browser) are refused, unless listed
@@ -17,11 +24,14 @@ in COURSE_VIEWER_ORIGINS (comma-separated, e.g. `https://hub.example.org`) or `-
 from __future__ import annotations
 
 import argparse
+import hmac
 import os
+import secrets
 import signal
 import sys
 from collections.abc import Iterable
 from pathlib import Path
+from typing import Any
 from urllib.parse import urlsplit
 
 import tornado.httpserver
@@ -39,9 +49,17 @@ from meshcat.servers.zmqserver import (
 
 from ..core.paths import runtime_dir
 
-__all__ = ["ORIGINS_ENV", "LocalBridge", "command_socket_url", "main", "origin_allowed"]
+__all__ = [
+    "ORIGINS_ENV",
+    "TOKEN_ARG",
+    "LocalBridge",
+    "command_socket_url",
+    "main",
+    "origin_allowed",
+]
 
 ORIGINS_ENV = "COURSE_VIEWER_ORIGINS"
+TOKEN_ARG = "view_token"  # the web port's key, in the query (module docstring)
 
 
 _PAGE = """<!DOCTYPE html>
@@ -66,15 +84,27 @@ document.getElementById("tf-frames").addEventListener("change", function (event)
 });
 // The websocket lives at the page's own prefix: "/" directly, "/proxy/<port>/" behind Jupyter.
 var base = location.href.split(/[?#]/)[0].replace(/static\\/(index\\.html)?$/, "");
-viewer.connect(base.replace(/^http/, "ws"));
+var token = new URLSearchParams(location.search).get("view_token") || "";
+viewer.connect(base.replace(/^http/, "ws") + "?view_token=" + encodeURIComponent(token));
 </script></body></html>
 """
+
+
+def _token_ok(handler: tornado.web.RequestHandler, token: str) -> bool:
+    """Return True if the request carries `token` as its `view_token` argument."""
+    given = handler.get_query_argument(TOKEN_ARG, "")
+    return bool(token) and hmac.compare_digest(given.encode(), token.encode())
 
 
 class _ViewerPage(tornado.web.RequestHandler):
     """meshcat's page, but connecting its websocket relative to where it was served from."""
 
+    def initialize(self, bridge: LocalBridge) -> None:
+        self.bridge = bridge
+
     def get(self, _name: str = "") -> None:
+        if not _token_ok(self, self.bridge.token):
+            raise tornado.web.HTTPError(403)
         self.set_header("Cache-Control", "no-store")
         self.write(_PAGE)
 
@@ -97,6 +127,13 @@ class _SameOriginWebSocket(WebSocketHandler):
     def check_origin(self, origin: str) -> bool:
         return origin_allowed(origin, self.request.headers.get("Host"), self.bridge.origins)
 
+    async def get(self, *args: Any, **kwargs: Any) -> None:
+        if not _token_ok(self, self.bridge.token):  # before the upgrade: nothing is sent
+            self.set_status(403)
+            self.finish()
+            return
+        await super().get(*args, **kwargs)
+
 
 def command_socket_url(pid: int | None = None) -> str:
     """Return the ZMQ address of this process's command socket: private to this user."""
@@ -118,10 +155,11 @@ class LocalBridge(ZMQWebSocketBridge):
     ) -> None:
         self.host = host
         self.origins = tuple(origins)
+        self.token = secrets.token_urlsafe(24)  # the web port's key (module docstring)
         self.websocket_pool = set()
         self.app = tornado.web.Application(
             [
-                (r"/static/(index\.html)?", _ViewerPage),
+                (r"/static/(index\.html)?", _ViewerPage, {"bridge": self}),
                 (
                     r"/static/(.*)",
                     StaticFileHandlerNoCache,
@@ -137,7 +175,7 @@ class LocalBridge(ZMQWebSocketBridge):
         server = tornado.httpserver.HTTPServer(self.app)
         server.add_sockets(sockets)
         self.fileserver_port = sockets[0].getsockname()[1]
-        self.web_url = f"http://{host}:{self.fileserver_port}/static/"
+        self.web_url = f"http://{host}:{self.fileserver_port}/static/?{TOKEN_ARG}={self.token}"
         self.tree = SceneTree()
 
 

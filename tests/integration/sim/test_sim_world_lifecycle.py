@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import urllib.error
 import urllib.request
 from pathlib import Path
 
@@ -15,10 +16,14 @@ from course_lib.session.session import Session
 pytestmark = [pytest.mark.ros, pytest.mark.sim]
 
 
-def _serves_viewer(port: int) -> bool:
-    """Return True if our meshcat viewer page answers on `port` (the port alone may be reused)."""
+def _serves_viewer(port: int, token: str = "") -> bool:
+    """Return True if our meshcat viewer page answers on `port` (the port alone may be reused;
+    without its token, the server's 403 says it is there)."""
     try:
-        page = urllib.request.urlopen(f"http://127.0.0.1:{port}/static/", timeout=2).read()
+        url = f"http://127.0.0.1:{port}/static/?view_token={token}"
+        page = urllib.request.urlopen(url, timeout=2).read()
+    except urllib.error.HTTPError as error:
+        return error.code == 403 and not token
     except OSError:
         return False
     return b"viewer.connect(base" in page
@@ -42,7 +47,7 @@ def test_viewer_server_is_gone_after_the_session_closes() -> None:
         world.stop()
         world = start_world(own, show=True)
         port = world.viewer.port
-        assert _serves_viewer(port)
+        assert _serves_viewer(port, world.viewer.token)
         processes = [world.process, world.viewer.process]
     finally:
         own.close()
