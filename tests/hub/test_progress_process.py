@@ -7,6 +7,8 @@ import os
 import pwd
 import shutil
 import socket
+import subprocess
+import sys
 import tempfile
 import time
 from collections.abc import Iterator
@@ -16,6 +18,8 @@ import pytest
 import requests
 from class_hub import hub_environment, start_prebuild
 
+from course_lib.core.paths import REPO_ROOT
+from course_lib.core.procfs import pid_alive
 from course_lib.hub.accounts import ensure_system_account
 from course_lib.hub.launcher import NO_WALL_ENV, _plan
 from course_lib.hub.progress import SERVICE_NAME, service_environment
@@ -45,6 +49,42 @@ def test_the_plan_names_a_port_already_held_for_the_service(
         with socket.socket() as squatter, pytest.raises(OSError):
             squatter.bind(("127.0.0.1", port))
     assert len(plan.progress_token) >= 32
+
+
+_LAUNCHER = """
+import sys
+from pathlib import Path
+from course_lib.hub.progress import service_environment
+from course_lib.hub.progress_service import bind_service_socket, start_service
+listener = bind_service_socket()
+port = listener.getsockname()[1]
+environment = service_environment(port, "t" * 64, "http://127.0.0.1:9/hub/api")
+service = start_service(sys.executable, Path(sys.argv[1]), listener, environment)
+print(service.pid, flush=True)
+sys.stdin.read()
+"""
+
+
+def test_a_killed_launcher_leaves_no_service(tmp_path: Path) -> None:
+    launcher = subprocess.Popen(
+        [sys.executable, "-c", _LAUNCHER, str(tmp_path / "progress.sqlite")],
+        stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, cwd=REPO_ROOT,
+    )  # fmt: skip
+    try:
+        assert launcher.stdout is not None
+        service = int(launcher.stdout.readline())
+        launcher.kill()
+        launcher.wait(10)
+        deadline = time.monotonic() + 15.0
+        while pid_alive(service) and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert not pid_alive(service), "the service outlived the launcher that started it"
+    finally:
+        launcher.kill()
+        launcher.wait(10)
+        for stream in (launcher.stdin, launcher.stdout):
+            if stream is not None:
+                stream.close()
 
 
 def _uid(pid: int) -> int:
