@@ -130,8 +130,10 @@ def test_the_service_runs_as_its_own_account_on_the_socket_handed_over(
         url = f"http://127.0.0.1:{port}/services/{SERVICE_NAME}/api/records"
         deadline, status = time.monotonic() + 60, 0
         while status != 401 and time.monotonic() < deadline and service.poll() is None:
-            try:
-                status = requests.get(url, timeout=5).status_code
+            try:  # the port takes connections at once; the service answers once it is up
+                status = requests.get(url, timeout=10).status_code
+            except requests.Timeout:
+                continue
             except requests.ConnectionError:
                 raise AssertionError("the handed-over socket refused a connection") from None
             time.sleep(0.2)
