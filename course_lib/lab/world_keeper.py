@@ -67,7 +67,6 @@ class WorldKeeper:
             "viewer": {
                 "tag": owner_tag(viewer.process.pid),
                 "port": viewer.port,
-                "token": viewer.token,
                 "zmq_url": viewer.zmq_url,
             },
         }

@@ -58,8 +58,7 @@ def _lab_world(
         print(answer["note"])
     sim = LabProcess("mujoco_sim", answer["sim"]["tag"], client)
     view = answer["viewer"]
-    process = LabProcess("meshcat", view["tag"], client)
-    viewer = Viewer(process, view["zmq_url"], view["port"], view.get("token", ""))
+    viewer = Viewer(LabProcess("meshcat", view["tag"], client), view["zmq_url"], view["port"])
     world = World(session, settings, sim, viewer, shared=True)
     world.wait_for_odom(timeout=timeout)
     return world

@@ -8,30 +8,25 @@ Its command socket (meshcat's ZMQ, which takes any scene command, a JavaScript c
 the learner's browser included) is a Unix socket in the user's private runtime folder
 (`ipc://`), never a TCP port: no other account on the host can connect to it.
 
-The web port (127.0.0.1) answers only a request that carries the server's token
-(`?view_token=`, not `token`, which Jupyter and JupyterHub read as theirs; made when it starts,
-printed in its `web_url` line and in no command line or environment):
-another account on the host can connect to the port, but neither load the view nor open its
-websocket, so it can neither read the scene nor send to it. The page passes its own token on
-to the websocket.
-
 The viewer's websocket accepts a browser page only from the origin it serves: the viewer page
 itself, or the Jupyter server (or hub) whose proxy forwards it, which keeps the request's Host.
 Other origins (any other web page open in the learner's browser) are refused, unless listed
 in COURSE_VIEWER_ORIGINS (comma-separated, e.g. `https://hub.example.org`) or `--origin`.
+
+Besides meshcat's commands, the command socket takes two of the course's own, so a live view
+costs nothing while no browser watches it: `set_transforms` (one frame's poses in one message,
+forwarded to the browsers as one websocket message, kept for a browser that connects later)
+and `watchers` (no data); both answer with the number of browsers connected, in ASCII digits.
 """
 
 from __future__ import annotations
 
 import argparse
-import hmac
 import os
-import secrets
 import signal
 import sys
 from collections.abc import Iterable
 from pathlib import Path
-from typing import Any
 from urllib.parse import urlsplit
 
 import tornado.httpserver
@@ -51,7 +46,8 @@ from ..core.paths import runtime_dir
 
 __all__ = [
     "ORIGINS_ENV",
-    "TOKEN_ARG",
+    "POSES_COMMAND",
+    "WATCHERS_COMMAND",
     "LocalBridge",
     "command_socket_url",
     "main",
@@ -59,7 +55,8 @@ __all__ = [
 ]
 
 ORIGINS_ENV = "COURSE_VIEWER_ORIGINS"
-TOKEN_ARG = "view_token"  # the web port's key, in the query (module docstring)
+POSES_COMMAND = b"set_transforms"
+WATCHERS_COMMAND = b"watchers"
 
 
 _PAGE = """<!DOCTYPE html>
@@ -73,6 +70,15 @@ _PAGE = """<!DOCTYPE html>
 <script src="main.min.js"></script>
 <script>
 var viewer = new MeshCat.Viewer(document.getElementById("meshcat-pane"));
+// One message carries a frame's poses: paths and their 4x4 matrices (column-major), in a row.
+var handle_one = viewer.handle_command.bind(viewer);
+viewer.handle_command = function (command) {
+  if (command.type !== "set_transforms") { return handle_one(command); }
+  for (var i = 0; i < command.paths.length; i++) {
+    handle_one({type: "set_transform", path: command.paths[i],
+                matrix: command.matrices.subarray(16 * i, 16 * i + 16)});
+  }
+};
 // The simulation draws its TF frames under /meshcat/tf, hidden; this box shows them.
 // Drawn on top of the robot's shapes (no depth test): most frames sit inside the chassis.
 document.getElementById("tf-frames").addEventListener("change", function (event) {
@@ -84,27 +90,15 @@ document.getElementById("tf-frames").addEventListener("change", function (event)
 });
 // The websocket lives at the page's own prefix: "/" directly, "/proxy/<port>/" behind Jupyter.
 var base = location.href.split(/[?#]/)[0].replace(/static\\/(index\\.html)?$/, "");
-var token = new URLSearchParams(location.search).get("view_token") || "";
-viewer.connect(base.replace(/^http/, "ws") + "?view_token=" + encodeURIComponent(token));
+viewer.connect(base.replace(/^http/, "ws"));
 </script></body></html>
 """
-
-
-def _token_ok(handler: tornado.web.RequestHandler, token: str) -> bool:
-    """Return True if the request carries `token` as its `view_token` argument."""
-    given = handler.get_query_argument(TOKEN_ARG, "")
-    return bool(token) and hmac.compare_digest(given.encode(), token.encode())
 
 
 class _ViewerPage(tornado.web.RequestHandler):
     """meshcat's page, but connecting its websocket relative to where it was served from."""
 
-    def initialize(self, bridge: LocalBridge) -> None:
-        self.bridge = bridge
-
     def get(self, _name: str = "") -> None:
-        if not _token_ok(self, self.bridge.token):
-            raise tornado.web.HTTPError(403)
         self.set_header("Cache-Control", "no-store")
         self.write(_PAGE)
 
@@ -127,13 +121,6 @@ class _SameOriginWebSocket(WebSocketHandler):
     def check_origin(self, origin: str) -> bool:
         return origin_allowed(origin, self.request.headers.get("Host"), self.bridge.origins)
 
-    async def get(self, *args: Any, **kwargs: Any) -> None:
-        if not _token_ok(self, self.bridge.token):  # before the upgrade: nothing is sent
-            self.set_status(403)
-            self.finish()
-            return
-        await super().get(*args, **kwargs)
-
 
 def command_socket_url(pid: int | None = None) -> str:
     """Return the ZMQ address of this process's command socket: private to this user."""
@@ -155,11 +142,10 @@ class LocalBridge(ZMQWebSocketBridge):
     ) -> None:
         self.host = host
         self.origins = tuple(origins)
-        self.token = secrets.token_urlsafe(24)  # the web port's key (module docstring)
         self.websocket_pool = set()
         self.app = tornado.web.Application(
             [
-                (r"/static/(index\.html)?", _ViewerPage, {"bridge": self}),
+                (r"/static/(index\.html)?", _ViewerPage),
                 (
                     r"/static/(.*)",
                     StaticFileHandlerNoCache,
@@ -175,8 +161,28 @@ class LocalBridge(ZMQWebSocketBridge):
         server = tornado.httpserver.HTTPServer(self.app)
         server.add_sockets(sockets)
         self.fileserver_port = sockets[0].getsockname()[1]
-        self.web_url = f"http://{host}:{self.fileserver_port}/static/?{TOKEN_ARG}={self.token}"
+        self.web_url = f"http://{host}:{self.fileserver_port}/static/"
         self.tree = SceneTree()
+        self.latest_poses: bytes | None = None
+
+    def handle_zmq(self, frames: list[bytes]) -> None:
+        """Serve the course's two commands (module docstring), meshcat's own otherwise."""
+        command = frames[0]
+        if command == POSES_COMMAND and len(frames) == 3:
+            self.latest_poses = frames[2]
+            self.forward_to_websockets(frames)
+        elif command != WATCHERS_COMMAND:
+            if command == b"delete":
+                self.latest_poses = None  # a scene drawn again starts from its own poses
+            super().handle_zmq(frames)
+            return
+        self.zmq_socket.send(str(len(self.websocket_pool)).encode())
+
+    def send_scene(self, websocket: WebSocketHandler) -> None:
+        """Send the scene to a browser that just connected, then the latest poses."""
+        super().send_scene(websocket)
+        if self.latest_poses is not None:
+            websocket.write_message(self.latest_poses, binary=True)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -40,11 +40,10 @@ def viewer_url(port: int, mode: str | None = None, environ: dict[str, str] | Non
 class Viewer:
     """A meshcat server child process and the iframe that shows it."""
 
-    def __init__(self, process: Any, zmq_url: str, port: int, token: str = "") -> None:
+    def __init__(self, process: Any, zmq_url: str, port: int) -> None:
         self.process = process
         self.zmq_url = zmq_url
         self.port = port
-        self.token = token  # the web port's key (course_lib/viz/server.py)
 
     @classmethod
     def start(cls, spawn: Any, timeout: float = 10.0) -> Viewer:
@@ -69,13 +68,12 @@ class Viewer:
                 hint="`make doctor` checks that meshcat is installed.",
             )
         port = int(re.search(r":(\d+)/static/", line.text).group(1))  # type: ignore[union-attr]
-        token = re.search(r"[?&]view_token=([\w-]+)", line.text)
-        return cls(process, zmq.split("=", 1)[1], port, token[1] if token else "")
+        return cls(process, zmq.split("=", 1)[1], port)
 
     @property
     def url(self) -> str:
-        """Return the iframe's address (see the module docstring), with the server's token."""
-        return viewer_url(self.port) + (f"?view_token={self.token}" if self.token else "")
+        """Return the iframe's address (see the module docstring)."""
+        return viewer_url(self.port)
 
     def iframe_html(self, height: int = 420) -> str:
         """Return the HTML of the view's iframe."""

@@ -1,5 +1,4 @@
-"""The meshcat server: only a request with its token, from the course's own origins, reaches its
-websocket or its page (another account on the host has neither); meshcat's protocol."""
+"""The meshcat server: only the course's own origins reach its websocket; meshcat's protocol."""
 
 from __future__ import annotations
 
@@ -11,10 +10,7 @@ import socket
 import subprocess
 import sys
 import textwrap
-import urllib.error
-import urllib.request
 from collections.abc import Iterator
-from urllib.parse import parse_qs, urlsplit
 
 import numpy as np
 import pytest
@@ -24,17 +20,15 @@ from meshcat.servers.zmqserver import ZMQWebSocketBridge
 
 from course_lib.sim.view.live import ServerWindow
 from course_lib.tools.testing import independent_env
-from course_lib.viz.server import ORIGINS_ENV, TOKEN_ARG, LocalBridge, origin_allowed
+from course_lib.viz.server import ORIGINS_ENV, LocalBridge, origin_allowed
 
 HUB = "https://hub.example.org"
 _EARLY: dict[int, bytes] = {}  # bytes read past a handshake's headers, by socket
-_PID = [0]  # the server's
 
 
 @pytest.fixture(scope="module")
-def server() -> Iterator[tuple[str, int, str]]:
-    """Run `python -m course_lib.viz.server` (one configured origin); yield (zmq url, port,
-    token) and keep its pid in _PID."""
+def server() -> Iterator[tuple[str, int]]:
+    """Run `python -m course_lib.viz.server` (one configured origin); yield (zmq url, port)."""
     env = independent_env(**{ORIGINS_ENV: HUB})
     process = subprocess.Popen(
         [sys.executable, "-m", "course_lib.viz.server"],
@@ -47,9 +41,7 @@ def server() -> Iterator[tuple[str, int, str]]:
         assert process.stdout is not None
         zmq_url = process.stdout.readline().strip().split("=", 1)[1]
         web_url = process.stdout.readline().strip().split("=", 1)[1]
-        token = parse_qs(urlsplit(web_url).query)[TOKEN_ARG][0]
-        _PID[0] = process.pid
-        yield zmq_url, urlsplit(web_url).port or 0, token
+        yield zmq_url, int(web_url.rsplit(":", 1)[1].split("/")[0])
     finally:
         process.terminate()
         process.wait(timeout=10)
@@ -57,7 +49,7 @@ def server() -> Iterator[tuple[str, int, str]]:
             process.stdout.close()
 
 
-def _handshake(port: int, headers: dict[str, str], token: str = "") -> tuple[int, socket.socket]:
+def _handshake(port: int, headers: dict[str, str]) -> tuple[int, socket.socket]:
     """Open the viewer's websocket with `headers`; return the HTTP status and the socket.
 
     The server may send its first frame in the same packet as its reply's headers: what came
@@ -72,8 +64,7 @@ def _handshake(port: int, headers: dict[str, str], token: str = "") -> tuple[int
         "Sec-WebSocket-Version": "13",
         **headers,
     }
-    query = f"?{TOKEN_ARG}={token}" if token else ""
-    request = f"GET /{query} HTTP/1.1\r\n" + "".join(f"{k}: {v}\r\n" for k, v in fields.items())
+    request = "GET / HTTP/1.1\r\n" + "".join(f"{k}: {v}\r\n" for k, v in fields.items())
     sock.sendall((request + "\r\n").encode())
     reply = b""
     while b"\r\n\r\n" not in reply:
@@ -85,9 +76,9 @@ def _handshake(port: int, headers: dict[str, str], token: str = "") -> tuple[int
     return int(reply.split(b" ", 2)[1]), sock
 
 
-def _connect(port: int, headers: dict[str, str], token: str = "") -> int:
+def _connect(port: int, headers: dict[str, str]) -> int:
     """Return 101 when the websocket is accepted, else the HTTP status (403: refused)."""
-    status, sock = _handshake(port, headers, token)
+    status, sock = _handshake(port, headers)
     sock.close()
     return status
 
@@ -113,26 +104,26 @@ def _first_frame(sock: socket.socket) -> bytes:
     return read(length)
 
 
-def test_the_viewer_page_own_origin_is_accepted(server: tuple[str, int, str]) -> None:
-    _, port, token = server
-    assert _connect(port, {"Origin": f"http://127.0.0.1:{port}"}, token) == 101
+def test_the_viewer_page_own_origin_is_accepted(server: tuple[str, int]) -> None:
+    port = server[1]
+    assert _connect(port, {"Origin": f"http://127.0.0.1:{port}"}) == 101
 
 
-def test_jupyter_proxy_origin_is_accepted(server: tuple[str, int, str]) -> None:
+def test_jupyter_proxy_origin_is_accepted(server: tuple[str, int]) -> None:
     # jupyter-server-proxy forwards the browser's Host and Origin: both name the Jupyter server.
     headers = {"Origin": "http://127.0.0.1:8888", "Host": "127.0.0.1:8888"}
-    assert _connect(server[1], headers, server[2]) == 101
+    assert _connect(server[1], headers) == 101
 
 
-def test_configured_hub_origin_is_accepted(server: tuple[str, int, str]) -> None:
-    assert _connect(server[1], {"Origin": HUB}, server[2]) == 101
+def test_configured_hub_origin_is_accepted(server: tuple[str, int]) -> None:
+    assert _connect(server[1], {"Origin": HUB}) == 101
 
 
 @pytest.mark.parametrize(
     "origin", ["http://evil.example", "http://127.0.0.1:1", "null", "https://hub.example.org.evil"]
 )
-def test_another_origin_is_refused(server: tuple[str, int, str], origin: str) -> None:
-    assert _connect(server[1], {"Origin": origin}, server[2]) == 403
+def test_another_origin_is_refused(server: tuple[str, int], origin: str) -> None:
+    assert _connect(server[1], {"Origin": origin}) == 403
 
 
 def test_origin_rules() -> None:
@@ -143,7 +134,7 @@ def test_origin_rules() -> None:
     assert not origin_allowed("http://x", None, ["", " "])
 
 
-def test_server_window_speaks_meshcats_protocol(server: tuple[str, int, str]) -> None:
+def test_server_window_speaks_meshcats_protocol(server: tuple[str, int]) -> None:
     """A transform sent through ServerWindow reaches a viewer that connects afterwards."""
     window = ServerWindow(server[0])
     try:
@@ -151,7 +142,7 @@ def test_server_window_speaks_meshcats_protocol(server: tuple[str, int, str]) ->
     finally:
         window.close()
 
-    status, sock = _handshake(server[1], {}, server[2])
+    status, sock = _handshake(server[1], {})
     with sock:
         assert status == 101
         message = _first_frame(sock)
@@ -200,10 +191,10 @@ def _url_reply(zmq_url: str) -> bytes | None:
 
 
 @pytest.mark.skipif(os.geteuid() != 0, reason="acting as another account needs root")
-def test_another_account_cannot_reach_the_command_socket(server: tuple[str, int, str]) -> None:
+def test_another_account_cannot_reach_the_command_socket(server: tuple[str, int]) -> None:
     """meshcat's command socket takes any scene command, a JavaScript callback included: it
     must answer its own user only (a TCP port on 127.0.0.1 answered every account)."""
-    zmq_url, _port, _token = server
+    zmq_url, _port = server
     assert _url_reply(zmq_url) is not None, "the owner's own question went unanswered"
     child = os.fork()
     if child == 0:  # another account: nobody
@@ -217,54 +208,3 @@ def test_another_account_cannot_reach_the_command_socket(server: tuple[str, int,
             os._exit(code)
     _, status = os.waitpid(child, 0)
     assert os.waitstatus_to_exitcode(status) == 0, f"another account reached {zmq_url}"
-
-
-def _page_status(port: int, token: str) -> int:
-    query = f"?{TOKEN_ARG}={token}" if token else ""
-    try:
-        with urllib.request.urlopen(f"http://127.0.0.1:{port}/static/{query}", timeout=10) as r:
-            return r.status
-    except urllib.error.HTTPError as error:
-        return error.code
-
-
-def test_without_the_token_neither_page_nor_websocket_answers(
-    server: tuple[str, int, str],
-) -> None:
-    _, port, token = server
-    own = {"Origin": f"http://127.0.0.1:{port}"}  # a script sets any Origin it likes
-    assert _connect(port, {}) == 403  # no Origin, no token: it used to get the scene
-    assert _connect(port, own) == 403
-    assert _connect(port, own, token[:-1] + ("A" if token[-1] != "A" else "B")) == 403
-    assert _page_status(port, "") == 403
-    assert _page_status(port, token) == 200
-
-
-@pytest.mark.skipif(os.geteuid() != 0, reason="acting as another account needs root")
-def test_another_account_can_neither_open_the_view_nor_find_its_token(
-    server: tuple[str, int, str],
-) -> None:
-    """Another Unix user of the host (a plain `make lab` binds the view to 127.0.0.1, which every
-    account reaches) gets 403 from the page and the websocket, and no token from /proc."""
-    _, port, token = server
-    child = os.fork()
-    if child == 0:  # another account: nobody
-        code = 3
-        try:
-            os.setgroups([])
-            os.setgid(65534)
-            os.setuid(65534)
-            refused = _connect(port, {"Origin": f"http://127.0.0.1:{port}"}) == 403
-            refused = refused and _page_status(port, "") == 403
-            seen = ""
-            for name in ("cmdline", "environ"):
-                try:
-                    with open(f"/proc/{_PID[0]}/{name}", "rb") as found:
-                        seen += found.read().decode(errors="replace")
-                except OSError:
-                    pass
-            code = 0 if refused and token not in seen else 1
-        finally:
-            os._exit(code)
-    _, status = os.waitpid(child, 0)
-    assert os.waitstatus_to_exitcode(status) == 0, f"another account opened the view on {port}"
