@@ -12,11 +12,6 @@ The viewer's websocket accepts a browser page only from the origin it serves: th
 itself, or the Jupyter server (or hub) whose proxy forwards it, which keeps the request's Host.
 Other origins (any other web page open in the learner's browser) are refused, unless listed
 in COURSE_VIEWER_ORIGINS (comma-separated, e.g. `https://hub.example.org`) or `--origin`.
-
-Besides meshcat's commands, the command socket takes two of the course's own, so a live view
-costs nothing while no browser watches it: `set_transforms` (one frame's poses in one message,
-forwarded to the browsers as one websocket message, kept for a browser that connects later)
-and `watchers` (no data); both answer with the number of browsers connected, in ASCII digits.
 """
 
 from __future__ import annotations
@@ -44,19 +39,9 @@ from meshcat.servers.zmqserver import (
 
 from ..core.paths import runtime_dir
 
-__all__ = [
-    "ORIGINS_ENV",
-    "POSES_COMMAND",
-    "WATCHERS_COMMAND",
-    "LocalBridge",
-    "command_socket_url",
-    "main",
-    "origin_allowed",
-]
+__all__ = ["ORIGINS_ENV", "LocalBridge", "command_socket_url", "main", "origin_allowed"]
 
 ORIGINS_ENV = "COURSE_VIEWER_ORIGINS"
-POSES_COMMAND = b"set_transforms"
-WATCHERS_COMMAND = b"watchers"
 
 
 _PAGE = """<!DOCTYPE html>
@@ -70,15 +55,6 @@ _PAGE = """<!DOCTYPE html>
 <script src="main.min.js"></script>
 <script>
 var viewer = new MeshCat.Viewer(document.getElementById("meshcat-pane"));
-// One message carries a frame's poses: paths and their 4x4 matrices (column-major), in a row.
-var handle_one = viewer.handle_command.bind(viewer);
-viewer.handle_command = function (command) {
-  if (command.type !== "set_transforms") { return handle_one(command); }
-  for (var i = 0; i < command.paths.length; i++) {
-    handle_one({type: "set_transform", path: command.paths[i],
-                matrix: command.matrices.subarray(16 * i, 16 * i + 16)});
-  }
-};
 // The simulation draws its TF frames under /meshcat/tf, hidden; this box shows them.
 // Drawn on top of the robot's shapes (no depth test): most frames sit inside the chassis.
 document.getElementById("tf-frames").addEventListener("change", function (event) {
@@ -163,26 +139,6 @@ class LocalBridge(ZMQWebSocketBridge):
         self.fileserver_port = sockets[0].getsockname()[1]
         self.web_url = f"http://{host}:{self.fileserver_port}/static/"
         self.tree = SceneTree()
-        self.latest_poses: bytes | None = None
-
-    def handle_zmq(self, frames: list[bytes]) -> None:
-        """Serve the course's two commands (module docstring), meshcat's own otherwise."""
-        command = frames[0]
-        if command == POSES_COMMAND and len(frames) == 3:
-            self.latest_poses = frames[2]
-            self.forward_to_websockets(frames)
-        elif command != WATCHERS_COMMAND:
-            if command == b"delete":
-                self.latest_poses = None  # a scene drawn again starts from its own poses
-            super().handle_zmq(frames)
-            return
-        self.zmq_socket.send(str(len(self.websocket_pool)).encode())
-
-    def send_scene(self, websocket: WebSocketHandler) -> None:
-        """Send the scene to a browser that just connected, then the latest poses."""
-        super().send_scene(websocket)
-        if self.latest_poses is not None:
-            websocket.write_message(self.latest_poses, binary=True)
 
 
 def main(argv: list[str] | None = None) -> int:

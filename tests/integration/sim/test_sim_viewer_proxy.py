@@ -45,7 +45,6 @@ def test_view_works_through_jupyter_server_proxy() -> None:
     session = Session()
     try:
         world = start_world(session, show=True)
-        world.drive(0.2)  # the view sends poses while the robot moves (and a browser watches)
         jupyter_port = free_port()
         session.spawn(
             [
