@@ -51,7 +51,7 @@ lint: setup  ## ruff lint and format check; the layers contract (imports only po
 format: setup
 	$(VENV)/bin/ruff format . && $(VENV)/bin/ruff check --fix .
 
-doctor:  ## Say what is installed, what is stale and what is running (rebuilds nothing)
+doctor:  ## Check the install works (rclpy, tf2_msgs, the camera), say what is stale and what runs; non-zero if broken
 	@test -x $(PY) || { echo "No environment in $(VENV)/ yet: run \`make setup\`."; exit 1; }
 	@$(PY) -m course_lib doctor
 

@@ -165,17 +165,24 @@ def first_failing(facts: dict[str, object]) -> str:
 def requests(cpu_cores: float, memory_mib: float) -> dict[str, dict[str, object]]:
     """Return a learner's Kubernetes requests and limits from the measured figures (pure).
 
-    Guarantees: the measured CPU rounded up to 0.05 cores, the measured memory rounded up to
-    64 MiB. Limits: 2 cores (start-up and workspace builds burst; the drive needs the
-    guarantee only) and twice the memory guarantee, at least 2 GiB (more kernels open,
-    `colcon build`).
+    Guarantees: the CPU rounded up to 0.05 cores, the memory rounded up to 64 MiB. Limits: at
+    least 2 cores (start-up and workspace builds burst; the drive needs the guarantee only)
+    and twice the memory guarantee, at least 2 GiB (more kernels open, `colcon build`).
+    `record()` passes the cores per learner that held every goal (see `held_cores`), so
+    Kubernetes never packs more learners on a core than the bench saw keep every goal.
     """
     cpu = math.ceil(cpu_cores * 20 - 1e-9) / 20
     memory = math.ceil(memory_mib / 64) * 64
     return {
         "guarantee": {"cpu": cpu, "memory": f"{memory}M"},
-        "limit": {"cpu": 2.0, "memory": f"{max(2 * memory, 2048)}M"},
+        "limit": {"cpu": max(2.0, cpu), "memory": f"{max(2 * memory, 2048)}M"},
     }
+
+
+def held_cores(measured_cores: float, host_cores: int, held: int) -> float:
+    """Return the CPU one learner must be given: what they used, and never less than the
+    host's cores over the learners that held every goal (all of them if none did) (pure)."""
+    return max(measured_cores, host_cores / held if held else float(host_cores))
 
 
 def summary(rounds: list[Round]) -> dict[str, object]:
@@ -284,7 +291,10 @@ def record(facts: dict[str, object], load_before: tuple[float, ...]) -> None:
             "learners_per_core_realtime": facts["learners_per_core_realtime"],
             "learners_per_gib": facts["learners_per_gib"],
         },
-        "kubernetes": requests(cpu, float(facts["memory_mib_alone"])),  # type: ignore[arg-type]
+        "kubernetes": requests(
+            held_cores(cpu, os.cpu_count() or 1, int(facts["held"])),  # type: ignore[call-overload]
+            float(facts["memory_mib_alone"]),  # type: ignore[arg-type]
+        ),
     }
     RECORD.parent.mkdir(exist_ok=True)
     RECORD.write_text(
@@ -294,8 +304,9 @@ def record(facts: dict[str, object], load_before: tuple[float, ...]) -> None:
         "# real time);\n"
         "# memory_mib_alone: PSS of one learner's processes with no other learner (one pod);\n"
         "# memory_mib_shared: PSS per learner at that N (libraries shared across learners).\n"
-        "# kubernetes: what deploy/kubernetes/values.yaml must request (requests() in\n"
-        "# bench/_capacity_report.py; tests/unit/repo/deploy/test_kubernetes_files.py checks).\n"
+        "# kubernetes: what deploy/kubernetes/values.yaml must request (requests() of\n"
+        "# held_cores() in bench/_capacity_report.py: never more learners per core than held\n"
+        "# every goal; tests/unit/repo/deploy/test_kubernetes_files.py checks).\n"
         + yaml.safe_dump(data, sort_keys=False)
     )
     print(f"\nwrote {RECORD.relative_to(REPO)}")

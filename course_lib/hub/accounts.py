@@ -15,7 +15,13 @@ import yaml
 from ..core.errors import ConfigError, CourseError
 from .settings import HUB_YAML, HubSettings
 
-__all__ = ["FIRST_LEARNER_UID", "Account", "ensure_accounts", "refuse_system_accounts"]
+__all__ = [
+    "FIRST_LEARNER_UID",
+    "Account",
+    "ensure_accounts",
+    "ensure_system_account",
+    "refuse_system_accounts",
+]
 
 FIRST_LEARNER_UID = 1000  # below it: accounts of the system (root, daemon, www-data...)
 PASSWORDS_FILE = "passwords.txt"
@@ -121,3 +127,25 @@ def ensure_accounts(
             written = _record_passwords(state, {name: password})
         accounts.append(Account(name, created=True))
     return accounts, written
+
+
+def ensure_system_account(name: str) -> pwd.struct_passwd:
+    """Return the system account `name` (a service's: no shell, no home, a group of its own),
+    created if missing. Needs root."""
+    try:
+        return pwd.getpwnam(name)
+    except KeyError:
+        pass
+    nologin = next((s for s in ("/usr/sbin/nologin", "/sbin/nologin") if Path(s).exists()), "")
+    argv = ["useradd", "--system", "--user-group", "--no-create-home", "--home-dir", "/"]
+    try:
+        subprocess.run(
+            [*argv, "--shell", nologin or "/bin/false", name],
+            check=True, capture_output=True, text=True,
+        )  # fmt: skip
+    except subprocess.CalledProcessError as err:
+        raise CourseError(
+            f"Could not create the system account {name!r}: {err.stderr.strip()}",
+            hint=f"create it yourself (`useradd --system --user-group {name}`), then retry.",
+        ) from None
+    return pwd.getpwnam(name)

@@ -16,11 +16,11 @@ LEARNER_PATH = "/usr/local/bin:/usr/bin:/bin"
 
 
 def _progress(plan: HubPlan) -> tuple[list[dict[str, Any]], list[dict[str, Any]], dict[str, str]]:
-    """Return the progress service, its roles and the environment it gives learners' servers."""
+    """Return the progress service, its roles and the environment it gives learners' servers
+    (the launcher runs the service: course_lib/hub/progress_service.py)."""
     from .progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
 
-    spec = service_spec(sys.executable, Path(plan.state) / "progress.sqlite", plan.progress_port)
-    spec["command"] = tied_command(*spec["command"])
+    spec = service_spec(plan.progress_port, plan.progress_token)
     url = f"http://127.0.0.1:{plan.progress_port}/services/{SERVICE_NAME}/"
     return [spec], roles(), {PROGRESS_URL_ENV: url}
 

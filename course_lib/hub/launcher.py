@@ -22,9 +22,17 @@ from ..core.errors import ConfigError, CourseError
 from ..core.ports import free_port
 from ..core.procfs import start_time
 from ..core.signalling import send
-from .accounts import ensure_accounts, refuse_system_accounts
+from .accounts import ensure_accounts, ensure_system_account, refuse_system_accounts
 from .environment import build_environment, check_world_executable
 from .plan import PLAN_ENV, HubPlan, write_plan
+from .progress import service_environment
+from .progress_service import (
+    SERVICE_ACCOUNT,
+    bind_service_socket,
+    records_folder,
+    start_service,
+    stop_service,
+)
 from .proxy import install_proxy, missing_npm, proxy_command
 from .settings import HUB_YAML, HubSettings, load_hub_settings
 from .tied import tied_preexec
@@ -100,7 +108,10 @@ def _wall_sockets(port: int) -> tuple[bool, str]:
     return True, str(folder)
 
 
-def _plan(settings: HubSettings, state: Path, course: Path, proxy: Path) -> HubPlan:
+def _plan(
+    settings: HubSettings, state: Path, course: Path, proxy: Path, progress: socket.socket
+) -> HubPlan:
+    """Return the hub's plan; the progress service's port is `progress`'s, bound already."""
     admin_password = None
     if settings.authenticator == "shared-password":
         admin_password = secrets.token_urlsafe(32)
@@ -113,7 +124,8 @@ def _plan(settings: HubSettings, state: Path, course: Path, proxy: Path) -> HubP
         port=settings.port,
         hub_port=free_port(),
         proxy_api_port=free_port(),
-        progress_port=free_port(),
+        progress_port=progress.getsockname()[1],
+        progress_token=secrets.token_hex(32),
         authenticator=settings.authenticator,
         learners=settings.learners,
         admins=settings.admins,
@@ -123,6 +135,18 @@ def _plan(settings: HubSettings, state: Path, course: Path, proxy: Path) -> HubP
         idle_minutes=settings.idle_minutes,
         shared_password=settings.shared_password,
         admin_password=admin_password,
+    )
+
+
+def _start_progress(plan: HubPlan, listener: socket.socket) -> subprocess.Popen[bytes]:
+    """Start the progress service on `listener`, as its own unprivileged account, from the
+    learners' environment (readable by every account), its records in a folder of its own."""
+    account = ensure_system_account(SERVICE_ACCOUNT)
+    folder = records_folder(Path(plan.state), account)
+    api = f"http://127.0.0.1:{plan.hub_port}/hub/api"
+    environment = service_environment(plan.progress_port, plan.progress_token, api)
+    return start_service(
+        plan.learner_python, folder / "progress.sqlite", listener, environment, account
     )
 
 
@@ -210,14 +234,20 @@ def run_hub(config: Path = HUB_YAML) -> int:
     note = forget_stale_proxy_pid(state / "proxy.pid", proxy)
     if note:
         print(note)
-    plan_data = _plan(settings, state, course, proxy)
-    plan = write_plan(plan_data, state / "plan.json")
+    with bind_service_socket() as listener:  # held from here on: no port race
+        plan_data = _plan(settings, state, course, proxy, listener)
+        plan = write_plan(plan_data, state / "plan.json")
+        service = _start_progress(plan_data, listener)
     env = {**os.environ, PLAN_ENV: str(plan)}
     signal.signal(signal.SIGTERM, signal.default_int_handler)
-    hub = subprocess.Popen(
-        [sys.executable, "-m", "jupyterhub", "-f", str(CONFIG_FILE)],
-        cwd=state, env=env, preexec_fn=tied_preexec(),
-    )  # fmt: skip
+    try:
+        hub = subprocess.Popen(
+            [sys.executable, "-m", "jupyterhub", "-f", str(CONFIG_FILE)],
+            cwd=state, env=env, preexec_fn=tied_preexec(),
+        )  # fmt: skip
+    except BaseException:
+        stop_service(service)
+        raise
     host = "127.0.0.1" if settings.ip in ("0.0.0.0", "::") else settings.ip
     url = f"http://{host}:{settings.port}/"
     try:
@@ -230,5 +260,6 @@ def run_hub(config: Path = HUB_YAML) -> int:
         return _stop(hub)
     finally:
         _stop(hub)
+        stop_service(service)
         if plan_data.sockets:  # every server has stopped: their socket folders go too
             shutil.rmtree(plan_data.sockets, ignore_errors=True)

@@ -33,6 +33,7 @@ class HubPlan:
     admin_password: str | None = None
     wall: bool = False  # each learner's server in a network of its own (course_lib.hub.wall)
     sockets: str = ""  # with the wall: the folder of the learners' server socket folders
+    progress_token: str = ""  # the progress service's API token (the launcher starts it)
 
     @property
     def learner_python(self) -> str:

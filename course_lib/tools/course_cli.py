@@ -82,12 +82,17 @@ def _check_config(args: argparse.Namespace) -> int:
 
 def _doctor(_args: argparse.Namespace) -> int:
     from .config_check import check_config
-    from .doctor import report
+    from .doctor import install_checks, report
 
     checked = check_config()
     print(checked.render())
-    print(report())
-    return 0 if checked.ok else 1
+    checks = install_checks()
+    print(report(checks))
+    broken = [check.name for check in checks if not check.ok]
+    if broken:
+        print(f"The install is broken ({', '.join(broken)}): `make setup` repairs it.",
+              file=sys.stderr)  # fmt: skip
+    return 0 if checked.ok and not broken else 1
 
 
 def _stop(_args: argparse.Namespace) -> int:

@@ -11,6 +11,7 @@ import contextlib
 import hashlib
 import os
 import pwd
+import shutil
 import signal
 import subprocess
 import tempfile
@@ -99,7 +100,11 @@ class ClassHub:
         for name in (*learners, *admins):
             remove_account(name)  # a leftover of an interrupted run: start from nothing
         self.environment = hub_environment()
-        self.state = folder / "state"
+        # the progress service's account keeps its records beside the state: every parent
+        # folder must let other accounts through (pytest's own temporary folder does not)
+        self._open_parent = Path(tempfile.mkdtemp(prefix="ros2-course-hub-"))
+        self._open_parent.chmod(0o711)
+        self.state = self._open_parent / "state"
         self.port = free_port()
         self.config = folder / "hub.yaml"
         self.config.write_text(
@@ -152,6 +157,7 @@ class ClassHub:
         left = {name: processes_of(name) for name in (*self.learners, *self.admins)}
         for name in (*self.learners, *self.admins):
             remove_account(name)
+        shutil.rmtree(self._open_parent, ignore_errors=True)
         return {name: found for name, found in left.items() if found}
 
 

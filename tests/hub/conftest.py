@@ -24,3 +24,4 @@ def hub(tmp_path_factory: pytest.TempPathFactory, proxy: str) -> Iterator[ClassH
         yield class_hub
     finally:
         class_hub.stop()
+        class_hub.listener.close()  # the progress service's port, held across restarts

@@ -2,7 +2,9 @@
 
 The hub runs from this environment (`python -m jupyterhub`) with configurable-http-proxy from
 npm, the shared-password authenticator, and a stand-in single-user server
-(fake_singleuser.py) so that each learner gets a real server token from a real spawn.
+(fake_singleuser.py) so that each learner gets a real server token from a real spawn. The
+progress service runs as the class hub runs it: on a socket bound before the hub starts,
+handed over (course_lib.hub.progress_service), as this process's user.
 """
 
 from __future__ import annotations
@@ -23,7 +25,14 @@ from typing import Any
 import requests
 
 from course_lib.core.ports import free_port
-from course_lib.hub.progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
+from course_lib.hub.progress import (
+    PROGRESS_URL_ENV,
+    SERVICE_NAME,
+    roles,
+    service_environment,
+    service_spec,
+)
+from course_lib.hub.progress_service import bind_service_socket, start_service, stop_service
 from course_lib.hub.proxy import install_proxy
 from course_lib.processes.children import set_parent_death_signal
 
@@ -54,7 +63,11 @@ class ClassHub:
         self.root = root
         self.proxy = proxy
         self.port, self.hub_port = free_port(), free_port()
-        self.proxy_api_port, self.service_port = free_port(), free_port()
+        self.proxy_api_port = free_port()
+        self.listener = bind_service_socket()  # held until the test process ends
+        self.service_port = self.listener.getsockname()[1]
+        self.service_token = secrets.token_hex(32)
+        self.service: subprocess.Popen[bytes] | None = None
         self.db = root / "state" / "progress.sqlite"
         self.servers_out = root / "servers"
         self.token = secrets.token_hex(16)  # the tests' own service token
@@ -73,8 +86,7 @@ class ClassHub:
         return f"http://127.0.0.1:{self.service_port}/services/{SERVICE_NAME}/"
 
     def _config(self) -> str:
-        spec = service_spec(sys.executable, self.db, self.service_port)
-        service_command = spec["command"]
+        spec = service_spec(self.service_port, self.service_token)
         tests = {"name": "course-tests", "api_token": self.token}
         tests_role = {
             "name": "course-tests",
@@ -112,7 +124,6 @@ class ClassHub:
         lines += [
             "from course_lib.hub.tied import tied_command",
             f"c.ConfigurableHTTPProxy.command = tied_command({self.proxy!r})",
-            f"c.JupyterHub.services[0]['command'] = tied_command(*{service_command!r})",
         ]
         return "c = get_config()  # noqa: F821\n" + "\n".join(lines) + "\n"
 
@@ -120,6 +131,9 @@ class ClassHub:
     def start(self, timeout: float = 60.0) -> None:
         """Start the hub and wait until it and the progress service answer."""
         (self.root / "state").mkdir(exist_ok=True)
+        api = f"http://127.0.0.1:{self.hub_port}/hub/api"
+        environment = service_environment(self.service_port, self.service_token, api)
+        self.service = start_service(sys.executable, self.db, self.listener, environment)
         with open(self.log, "ab") as log:
             self.process = subprocess.Popen(
                 [sys.executable, "-m", "jupyterhub", "-f", "jupyterhub_config.py"],
@@ -142,7 +156,10 @@ class ClassHub:
         return 0
 
     def stop(self) -> None:
-        """Stop the hub (it stops the proxy, the progress service and every server)."""
+        """Stop the hub (it stops the proxy and every server), then the progress service."""
+        if self.service is not None:
+            stop_service(self.service)
+            self.service = None
         if self.process is None:
             return
         self.process.send_signal(signal.SIGTERM)
@@ -159,14 +176,9 @@ class ClassHub:
         return "\n".join(text.splitlines()[-lines:])
 
     def service_pid(self) -> int:
-        """Return the pid of the progress service the hub started."""
-        import psutil
-
-        assert self.process is not None
-        for child in psutil.Process(self.process.pid).children(recursive=True):
-            if "course_lib.hub.progress" in " ".join(child.cmdline()):
-                return child.pid
-        raise RuntimeError("the hub runs no progress service")
+        """Return the pid of the progress service."""
+        assert self.service is not None
+        return self.service.pid
 
     # --- the hub's REST API, with the tests' service token ------------------------------------
     def api(self, method: str, path: str, **kwargs: Any) -> requests.Response:

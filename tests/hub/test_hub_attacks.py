@@ -66,7 +66,7 @@ def class_hub(tmp_path_factory: pytest.TempPathFactory) -> Iterator[ClassHub]:
     try:
         yield started
     finally:
-        (Path(started.state).parent / "hub.log").write_text(started.log(), encoding="utf-8")
+        (folder / "hub.log").write_text(started.log(), encoding="utf-8")
         started.stop()  # removes the accounts
 
 
@@ -228,3 +228,24 @@ def test_another_account_reaches_no_tcp_port_of_the_learners_lab(
     theirs = [p for p in opened if p in host]
     assert not theirs, f"another account connected to the learner's ports {theirs} (all {ports})"
     assert not host, f"the learner's lab listens on the host's network: {host}"
+
+
+def test_the_progress_service_runs_as_its_own_account_not_root(class_hub: ClassHub) -> None:
+    """It ran as root, on a port picked free, released, and bound again later by the service
+    (another account could take it in between and receive the learners' records and tokens)."""
+    from course_lib.hub.progress_service import SERVICE_ACCOUNT
+
+    found = []
+    for entry in Path("/proc").iterdir():
+        try:
+            command = (entry / "cmdline").read_bytes().split(b"\0")
+            if entry.name.isdigit() and b"course_lib.hub.progress" in command:
+                found.append((entry.stat().st_uid, command))
+        except OSError:
+            continue
+    assert found, "no progress service runs"
+    account = pwd.getpwnam(SERVICE_ACCOUNT).pw_uid
+    learners = {pwd.getpwnam(n).pw_uid for n in (VICTIM, INTRUDER, LATECOMER, ADMIN)}
+    assert [uid for uid, _ in found] == [account], found
+    assert account != 0 and account not in learners
+    assert all(b"--listen-fd" in command for _, command in found), "handed its socket"

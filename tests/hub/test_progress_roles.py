@@ -4,7 +4,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from course_lib.hub.progress import ACCESS_SCOPE, SERVICE_NAME, roles, service_spec
+from course_lib.hub.progress import (
+    ACCESS_SCOPE,
+    SERVICE_NAME,
+    roles,
+    service_command,
+    service_spec,
+)
 
 
 def test_the_server_role_keeps_jupyterhubs_scopes_and_adds_the_access_scope() -> None:
@@ -25,9 +31,11 @@ def test_the_service_may_list_users_and_nothing_more() -> None:
     # that JupyterHub knows every scope is proven by the hub tests: a hub refuses to start
 
 
-def test_the_service_spec_is_a_managed_service_on_its_port() -> None:
-    spec = service_spec("python3", Path("state", "progress.sqlite"), 8123)
+def test_the_service_spec_is_an_external_service_on_its_port() -> None:
+    spec = service_spec(8123, "t0ken")
     assert spec["name"] == SERVICE_NAME and spec["url"] == "http://127.0.0.1:8123"
-    assert spec["command"] == ["python3", "-m", "course_lib.hub.progress",
-                               "--db", str(Path("state", "progress.sqlite"))]  # fmt: skip
-    assert spec["oauth_no_confirm"] is True
+    assert "command" not in spec, "the launcher starts it, on the socket it bound"
+    assert spec["api_token"] == "t0ken" and spec["oauth_no_confirm"] is True
+    assert service_command("python3", Path("state", "progress.sqlite")) == [
+        "python3", "-m", "course_lib.hub.progress", "--db", str(Path("state", "progress.sqlite"))
+    ]  # fmt: skip

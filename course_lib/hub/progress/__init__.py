@@ -1,8 +1,10 @@
 """The course-progress service: the instructor's page of every learner's self-checks.
 
-The hub runs it as a managed JupyterHub service (`python -m course_lib.hub.progress`), served
-at `/services/course-progress/`. Lessons' self-checks post their verdict to it with the
-learner's own hub token (see course_lib/lessons/progress/client.py); admins read the page.
+It is an external JupyterHub service (`python -m course_lib.hub.progress`), served at
+`/services/course-progress/`: the class hub's launcher starts it on a socket it bound itself,
+as an account of its own (course_lib/hub/progress_service.py); on Kubernetes it is a pod.
+Lessons' self-checks post their verdict to it with the learner's own hub token (see
+course_lib/lessons/progress/client.py); admins read the page.
 
 This module is what the hub's config calls. It imports neither JupyterHub nor tornado, so a
 learner's kernel may import it for the names below.
@@ -23,6 +25,8 @@ __all__ = [
     "PROGRESS_URL_ENV",
     "SERVICE_NAME",
     "roles",
+    "service_command",
+    "service_environment",
     "service_spec",
 ]
 
@@ -34,21 +38,42 @@ ACCESS_SCOPE = f"access:services!service={SERVICE_NAME}"
 _SERVER_DEFAULT = ("users:activity!user", "access:servers!server")
 
 
-def service_spec(python: str, db_path: Path, port: int) -> dict[str, Any]:
-    """Return the entry for `c.JupyterHub.services`: the managed progress service.
+def service_command(python: str, db_path: Path) -> list[str]:
+    """Return the service's command line: `python -m course_lib.hub.progress --db db_path`."""
+    return [python, "-m", "course_lib.hub.progress", "--db", str(db_path)]
 
-    The hub starts `python -m course_lib.hub.progress --db db_path`, proxies
-    /services/course-progress/ to http://127.0.0.1:port, and gives the service its own API
-    token and OAuth client. `oauth_no_confirm`: the page is part of the course, so an admin is
-    not asked to authorise it. `display`: the hub's home page lists it for admins to click.
+
+def service_spec(port: int, api_token: str) -> dict[str, Any]:
+    """Return the entry for `c.JupyterHub.services`: the progress service, external.
+
+    The hub proxies /services/course-progress/ to http://127.0.0.1:port, trusts `api_token`
+    as the service's and gives it an OAuth client (`service-course-progress`). The hub does
+    not start it: JupyterHub hands a managed service no socket, and the service must get the
+    one its launcher bound (no port race). `oauth_no_confirm`: the page is part of the
+    course, so an admin is not asked to authorise it. `display`: the hub's home page lists it
+    for admins to click.
     """
     return {
         "name": SERVICE_NAME,
         "url": f"http://127.0.0.1:{port}",
-        "command": [python, "-m", "course_lib.hub.progress", "--db", str(db_path)],
-        "environment": {DB_ENV: str(db_path)},
+        "api_token": api_token,
         "oauth_no_confirm": True,
         "display": True,
+    }
+
+
+def service_environment(port: int, api_token: str, hub_api_url: str) -> dict[str, str]:
+    """Return what JupyterHub would give the service, had it started it (HubOAuth reads it)."""
+    prefix = f"/services/{SERVICE_NAME}/"
+    return {
+        "JUPYTERHUB_SERVICE_NAME": SERVICE_NAME,
+        "JUPYTERHUB_SERVICE_URL": f"http://127.0.0.1:{port}",
+        "JUPYTERHUB_SERVICE_PREFIX": prefix,
+        "JUPYTERHUB_BASE_URL": "/",
+        "JUPYTERHUB_API_URL": hub_api_url,
+        "JUPYTERHUB_API_TOKEN": api_token,
+        "JUPYTERHUB_CLIENT_ID": f"service-{SERVICE_NAME}",
+        "JUPYTERHUB_OAUTH_CALLBACK_URL": f"{prefix}oauth_callback",
     }
 
 

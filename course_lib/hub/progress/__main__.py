@@ -1,8 +1,9 @@
 """`python -m course_lib.hub.progress --db FILE`: the progress service, as the hub runs it.
 
-It reads what JupyterHub gives a managed service (JUPYTERHUB_API_TOKEN, JUPYTERHUB_API_URL,
-JUPYTERHUB_SERVICE_URL, JUPYTERHUB_SERVICE_PREFIX, JUPYTERHUB_CLIENT_ID, ...) and serves on
-the service URL's address until SIGTERM or SIGINT.
+It reads what JupyterHub gives a service (JUPYTERHUB_API_TOKEN, JUPYTERHUB_API_URL,
+JUPYTERHUB_SERVICE_URL, JUPYTERHUB_SERVICE_PREFIX, JUPYTERHUB_CLIENT_ID, ...) and serves until
+SIGTERM or SIGINT: on the listening socket it inherited (`--listen-fd N`, the class hub's
+launcher bound it), or else on the service URL's address (a pod of its own on Kubernetes).
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ import logging
 import os
 import secrets
 import signal
+import socket
 import sys
 from pathlib import Path
 from urllib.parse import urlparse
@@ -30,6 +32,9 @@ def _arguments(argv: list[str] | None) -> argparse.Namespace:
     parser.add_argument(
         "--db", type=Path, default=os.environ.get(DB_ENV), help=f"the SQLite file (or ${DB_ENV})"
     )
+    parser.add_argument(
+        "--listen-fd", type=int, default=None, help="serve on this inherited listening socket"
+    )
     args = parser.parse_args(argv)
     missing = [name for name in _NEEDED if not os.environ.get(name)]
     if missing:
@@ -42,7 +47,7 @@ def _arguments(argv: list[str] | None) -> argparse.Namespace:
     return args
 
 
-async def _serve(db: Path) -> None:
+async def _serve(db: Path, listen_fd: int | None = None) -> None:
     from jupyterhub.services.auth import HubOAuth
 
     from ...lessons.lesson import TITLES
@@ -55,9 +60,17 @@ async def _serve(db: Path) -> None:
     prefix = os.environ.get("JUPYTERHUB_SERVICE_PREFIX", f"/services/{SERVICE_NAME}/")
     app = make_app(context, prefix, cookie_secret=secrets.token_bytes(32))
     address = urlparse(os.environ["JUPYTERHUB_SERVICE_URL"])
-    server = app.listen(
-        address.port or 80, address.hostname or "127.0.0.1", max_body_size=MAX_READ_BYTES
-    )
+    if listen_fd is None:
+        server = app.listen(
+            address.port or 80, address.hostname or "127.0.0.1", max_body_size=MAX_READ_BYTES
+        )
+    else:  # bound by whoever started this: the port was never free for another to take
+        from tornado.httpserver import HTTPServer
+
+        listener = socket.socket(fileno=listen_fd)
+        listener.setblocking(False)
+        server = HTTPServer(app, max_body_size=MAX_READ_BYTES)
+        server.add_sockets([listener])
     logging.getLogger(SERVICE_NAME).info(
         "serving %s on %s, records in %s", prefix, address.netloc, db
     )
@@ -82,7 +95,7 @@ def main(argv: list[str] | None = None) -> int:
     from .store import StoreError
 
     try:
-        asyncio.run(_serve(args.db))
+        asyncio.run(_serve(args.db, args.listen_fd))
     except StoreError as error:
         print(f"{SERVICE_NAME}: {error}", file=sys.stderr)
         return 2

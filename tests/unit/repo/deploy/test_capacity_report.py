@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from bench._capacity_kernel import real_time_factor
-from bench._capacity_report import Figures, judge, percentile, requests
+from bench._capacity_report import Figures, held_cores, judge, percentile, requests
 from bench.class_capacity import sizes
 
 
@@ -45,6 +45,14 @@ def test_requests_round_up_the_measured_figures() -> None:
     assert requests(0.5, 384)["guarantee"] == {"cpu": 0.5, "memory": "384M"}
     assert requests(0.51, 385)["guarantee"] == {"cpu": 0.55, "memory": "448M"}
     assert requests(0.9, 1500)["limit"]["memory"] == "3072M"
+    assert requests(2.5, 400)["limit"]["cpu"] == 2.5  # never below the guarantee
+
+
+def test_held_cores_never_pack_more_learners_per_core_than_held_every_goal() -> None:
+    assert held_cores(0.394, 2, 1) == 2.0  # 1 learner held on 2 cores: 2 cores each
+    assert held_cores(0.2, 2, 8) == 0.25
+    assert held_cores(0.4, 2, 8) == 0.4  # what one learner uses, if that is more
+    assert held_cores(0.3, 4, 0) == 4.0  # none held: the whole host
 
 
 def test_learner_counts_double_up_to_the_cap() -> None:

@@ -140,7 +140,98 @@ def _service() -> tuple[str, str]:
 
 def test_files_parse(values, progress) -> None:
     assert set(values) >= {"hub", "singleuser", "cull"}
-    assert set(progress) == {"PersistentVolumeClaim", "Deployment", "Service"}
+    assert set(progress) == {"PersistentVolumeClaim", "Deployment", "Service", "NetworkPolicy"}
+
+
+def schema_errors(document: Any, schema_name: str) -> list[str]:
+    """Return where `document` breaks schemas/`schema_name` (empty when it follows it)."""
+    import jsonschema
+
+    schema = json.loads((KUBE / "schemas" / schema_name).read_text())
+    validator = jsonschema.Draft7Validator(schema)
+    return [
+        f"{'/'.join(map(str, e.absolute_path)) or '(top)'}: {e.message}"
+        for e in validator.iter_errors(document)
+    ]
+
+
+def test_values_follow_the_pinned_charts_schema(values) -> None:
+    assert schema_errors(values, "values.schema.json") == []
+
+
+def test_progress_objects_follow_the_kubernetes_shapes() -> None:
+    for document in yaml.safe_load_all((KUBE / "progress.yaml").read_text()):
+        assert schema_errors(document, "progress.schema.json") == [], document["kind"]
+
+
+def test_the_schemas_refuse_a_misspelt_or_mistyped_key(values, progress) -> None:
+    broken = json.loads(json.dumps(values))
+    broken["singleuser"]["cpu"]["guarantees"] = 1.0  # closed object in the chart's schema
+    broken["singleuser"]["memory"]["limit"] = ["2G"]
+    broken["cull"]["timeout"] = "1h"
+    broken["singleuser"]["networkPolicy"]["enable"] = True
+    errors = schema_errors(broken, "values.schema.json")
+    assert len(errors) == 4, errors
+    deployment = json.loads(json.dumps(progress["Deployment"]))
+    deployment["spec"]["template"]["spec"]["containers"][0]["port"] = 8090
+    deployment["spec"]["replicas"] = "1"
+    assert len(schema_errors(deployment, "progress.schema.json")) == 1  # oneOf: one error
+    netpol = json.loads(json.dumps(progress["NetworkPolicy"]))
+    netpol["spec"]["policyTypes"] = ["Inbound"]
+    assert schema_errors(netpol, "progress.schema.json")
+
+
+def environment_pin(name: str) -> str:
+    """Return the version environment.txt pins `name` to (`name==X`)."""
+    text = (REPO / "environment.txt").read_text()
+    match = re.search(rf"^{re.escape(name)}==(\S+)", text, flags=re.MULTILINE)
+    if match is None:
+        raise ValueError(f"environment.txt pins no {name}")
+    return match[1]
+
+
+def test_the_chart_is_pinned_and_its_jupyterhub_matches_the_image_or_says_it_does_not(
+    values,
+) -> None:
+    chart = yaml.safe_load((KUBE / "chart.yaml").read_text())
+    version = chart["version"]
+    assert re.fullmatch(r"\d+\.\d+\.\d+", version), "a released chart, not a range"
+    readme = (REPO / "README.md").read_text()
+    section = readme.split("## A class on Kubernetes (Zero to JupyterHub)", 1)[1]
+    header = (KUBE / "values.yaml").read_text()
+    for text in (section, header):
+        installs = re.findall(r"helm upgrade --install[^\n]*(?:\\\n[^\n]*)*", text)
+        assert installs, "an install command"
+        assert all(f"--version {version}" in cmd for cmd in installs), installs
+    image = environment_pin("jupyterhub")
+    if chart["hub_jupyterhub"] == image:
+        assert not chart.get("no_matching_chart")
+        return
+    # No chart runs the image's JupyterHub: every place says so, with both versions.
+    assert chart["no_matching_chart"] is True
+    for text in (section, header):
+        assert f"JupyterHub {chart['hub_jupyterhub']}" in text
+        assert f"JupyterHub {image}" in text
+        assert "untested" in text
+
+
+def test_network_policy_is_on_and_the_readme_says_the_plugin_must_enforce_it(
+    values, progress
+) -> None:
+    policies = [
+        values["hub"]["networkPolicy"],
+        values["proxy"]["chp"]["networkPolicy"],
+        values["proxy"]["traefik"]["networkPolicy"],
+        values["singleuser"]["networkPolicy"],
+    ]
+    assert all(p.get("enabled") is True for p in policies)
+    rules = values["singleuser"]["networkPolicy"]["egressAllowRules"]
+    assert rules["privateIPs"] is False and rules["cloudMetadataServer"] is False
+    selected = progress["NetworkPolicy"]["spec"]["podSelector"]["matchLabels"]
+    pod = progress["Deployment"]["spec"]["template"]["metadata"]["labels"]
+    assert selected.items() <= pod.items(), "the policy selects the service's pod"
+    section = (REPO / "README.md").read_text().split("## A class on Kubernetes", 1)[1]
+    assert "network plugin must enforce NetworkPolicy" in " ".join(section.split())
 
 
 def test_singleuser_runs_the_local_hubs_command(values, dockerfile) -> None:
@@ -181,8 +272,11 @@ def test_progress_service_is_one_name_one_port(values, progress) -> None:
     assert "/data" in mounts
     progress_module = _course_module("course_lib.hub.progress")
     if progress_module is not None:  # the local hub's entry: same command, same OAuth settings
-        spec = progress_module.service_spec(IMAGE_PYTHON, Path("/data/progress.sqlite"), port)
-        assert container["args"] == spec["command"]
+        command = progress_module.service_command(IMAGE_PYTHON, Path("/data/progress.sqlite"))
+        assert container["args"] == command
+        spec = progress_module.service_spec(port, "")
+        given = progress_module.service_environment(port, "", "")
+        assert set(given) == set(env), "what the local hub's progress service is given"
         entry = values["hub"]["services"][name]
         for key in ("oauth_no_confirm", "display"):
             assert entry.get(key) == spec.get(key), key
@@ -221,14 +315,28 @@ def test_roles_mirror_the_progress_service(values) -> None:
             assert sorted(mine.get(key, [])) == sorted(role.get(key, [])), (role["name"], key)
 
 
+def host_cores(host: str) -> int:
+    """Return the cores of deploy/capacity.yaml's `measured.host` ("2 cores (x86_64), ...")."""
+    match = re.match(r"(\d+) cores?\b", host)
+    if match is None:
+        raise ValueError(f"no core count in measured.host: {host!r}")
+    return int(match[1])
+
+
 def test_requests_are_the_measured_figures(values, capacity) -> None:
-    from bench._capacity_report import requests
+    from bench._capacity_report import held_cores, requests
 
     kube = capacity["kubernetes"]
     per = capacity["per_learner"]
-    assert kube == requests(per["cpu_cores"], per["memory_mib_alone"])
+    measured = capacity["measured"]
+    cores, held = host_cores(measured["host"]), measured["learners_held"]
+    cpu = held_cores(per["cpu_cores"], cores, held)
+    assert kube == requests(cpu, per["memory_mib_alone"])
     single = values["singleuser"]
     assert single["cpu"]["guarantee"] == kube["guarantee"]["cpu"] >= per["cpu_cores"]
+    # Kubernetes packs at most 1/guarantee learners per core: never more than held every goal
+    assert 1 / single["cpu"]["guarantee"] <= (held or 1) / cores + 1e-9
+    assert single["cpu"]["limit"] >= single["cpu"]["guarantee"]
     assert single["cpu"]["limit"] == kube["limit"]["cpu"]
     assert single["memory"]["guarantee"] == kube["guarantee"]["memory"]
     assert mib(single["memory"]["guarantee"]) >= per["memory_mib_alone"]
@@ -296,6 +404,9 @@ def test_registry_host_rule(image: str, named: bool) -> None:
 
 
 def test_broken_files_fail_the_checks() -> None:
+    assert host_cores("16 cores (x86_64), 62.8 GiB") == 16
+    with pytest.raises(ValueError):
+        host_cores("a big one")
     assert mib("448M") == 448 and mib("2G") == 2048 and mib("256Mi") == 256
     with pytest.raises(ValueError):
         mib("lots")

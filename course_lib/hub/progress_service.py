@@ -1,0 +1,110 @@
+"""The progress service as the class hub runs it: on a socket bound once, as its own account.
+
+The launcher (root) binds the service's port (127.0.0.1, one the kernel picks) and hands the
+listening socket to the service as an inherited file descriptor: no other process can take
+the port between its choice and its use, as one could when a free port was picked, closed
+and bound again later. The service then runs as SERVICE_ACCOUNT, a system account of its own
+(no shell, no home, no group but its own), which owns only the folder of its records.
+"""
+
+from __future__ import annotations
+
+import os
+import pwd
+import signal
+import socket
+import stat
+import subprocess
+from collections.abc import Callable, Mapping
+from pathlib import Path
+
+from ..core.errors import CourseError
+from .progress import service_command
+from .tied import tie_to_parent
+
+__all__ = [
+    "SERVICE_ACCOUNT",
+    "bind_service_socket",
+    "records_folder",
+    "start_service",
+    "stop_service",
+]
+
+SERVICE_ACCOUNT = "ros2-course-progress"
+STOP_TIMEOUT_S = 10.0
+
+
+def bind_service_socket(host: str = "127.0.0.1") -> socket.socket:
+    """Return a listening TCP socket on `host`, on a port the kernel picked (held from now)."""
+    listener = socket.create_server((host, 0), backlog=64)
+    listener.set_inheritable(False)  # passed to the service by pass_fds only
+    return listener
+
+
+def records_folder(state: Path, account: pwd.struct_passwd | None) -> Path:
+    """Return the service's folder beside the hub's `state` (which stays root's alone), owned
+    by `account`, private to it; records an earlier hub kept in `state` move there."""
+    folder = state.parent / f"{state.name}-progress"
+    closed = [p for p in folder.parents if not p.stat().st_mode & stat.S_IXOTH]
+    if account is not None and closed:
+        raise CourseError(
+            f"The progress service runs as {account.pw_name!r} and cannot reach {folder}: "
+            f"{closed[0]} is closed to other accounts.",
+            hint="set `state:` in config/hub.yaml to a folder in one every account may enter "
+            "(the default, /var/lib/ros2-params-course, is).",
+        )
+    folder.mkdir(mode=0o700, exist_ok=True)
+    if folder.is_symlink() or not folder.is_dir():
+        raise CourseError(f"{folder} is not a folder.", hint="remove it, start the hub again.")
+    old = state / "progress.sqlite"
+    if old.exists() and not (folder / old.name).exists():
+        old.rename(folder / old.name)
+    if account is not None:
+        for path in (folder, *folder.iterdir()):
+            os.lchown(path, account.pw_uid, account.pw_gid)
+    folder.chmod(0o700)
+    return folder
+
+
+def _become(account: pwd.struct_passwd | None, parent: int) -> Callable[[], None]:
+    def preexec() -> None:
+        if account is not None:
+            os.setgroups([])
+            os.setgid(account.pw_gid)
+            os.setuid(account.pw_uid)
+        tie_to_parent(signal.SIGTERM, parent=parent)  # after setuid, which clears it
+
+    return preexec
+
+
+def start_service(
+    python: str,
+    db: Path,
+    listener: socket.socket,
+    environment: Mapping[str, str],
+    account: pwd.struct_passwd | None = None,
+) -> subprocess.Popen[bytes]:
+    """Start the service on `listener` (the caller may close its copy after), as `account`
+    (None: as this process's user), tied to this process (it stops when this one dies)."""
+    fd = listener.fileno()
+    env = {
+        "PATH": "/usr/bin:/bin",
+        "LANG": os.environ.get("LANG", "C.UTF-8"),
+        "HOME": account.pw_dir if account is not None else os.environ.get("HOME", "/"),
+        **environment,
+    }
+    return subprocess.Popen(
+        [*service_command(python, db), "--listen-fd", str(fd)],
+        env=env, cwd="/", pass_fds=(fd,), preexec_fn=_become(account, os.getpid()),
+    )  # fmt: skip
+
+
+def stop_service(service: subprocess.Popen[bytes]) -> None:
+    """Stop the service (SIGTERM, then SIGKILL after a while); idempotent."""
+    if service.poll() is None:
+        service.send_signal(signal.SIGTERM)
+        try:
+            service.wait(STOP_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            service.kill()
+            service.wait()
