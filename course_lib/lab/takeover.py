@@ -11,7 +11,7 @@ from __future__ import annotations
 import os
 import threading
 
-from ..core import param_journal
+from ..core import param_journal, procfs
 from ..processes.children import ChildProcess, OutputLine, owner_tag
 from .client import machine_client
 from .register import NodeRecord, NodeRegister, node_name_from_log
@@ -73,9 +73,9 @@ def _register(child: ChildProcess, executable: str, node: str, label: str) -> No
         return
     record = NodeRecord(executable, node, owner_tag(child.pid), label)
     if node:  # the parameter journal's start record named the executable only
-        param_journal.append(
-            os.environ.get("ROS_DOMAIN_ID"), {"t": "named", "exe": executable, "node": node}
-        )
+        # the node's own domain (its start record's), not this process's current one
+        domain = procfs.environ(child.pid).get("ROS_DOMAIN_ID") or os.environ.get("ROS_DOMAIN_ID")
+        param_journal.append(domain, {"t": "named", "exe": executable, "node": node})
     client = machine_client()
     if client is not None:
         client.request("node.register", **record.as_dict())

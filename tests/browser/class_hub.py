@@ -105,6 +105,8 @@ class ClassHub:
         self._open_parent = Path(tempfile.mkdtemp(prefix="ros2-course-hub-"))
         self._open_parent.chmod(0o711)
         self.state = self._open_parent / "state"
+        if (folder / "state").is_dir():  # a state a test laid out (a stale pid file, ...)
+            shutil.copytree(folder / "state", self.state)
         self.port = free_port()
         self.config = folder / "hub.yaml"
         self.config.write_text(

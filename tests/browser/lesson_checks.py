@@ -41,12 +41,12 @@ FIGURES: dict[int, list[tuple[str, str]]] = {
 }
 # A cell a walk adds to a lesson once (as a learner adds one) to print a figure the lesson keeps:
 # lesson 7's plot sees simulated time go back only if the lab's world restarts or a second one
-# publishes /clock, and marks its own node's four velocity changes (0.2, then 0.0; the
-# exercise's answer, then the checker's 0.0).
+# publishes /clock, and marks its own node's two velocity changes (0.2, then 0.0): `plot.still()`
+# ends the live plot before the exercise's changes.
 PROBES: dict[int, tuple[str, str]] = {
     7: (
         "print('time jumps:', plot.time_jumps, '| marks:', len(plot.marks))",
-        "time jumps: 0 | marks: 4",
+        "time jumps: 0 | marks: 2",
     ),
 }
 # How a course error reads in a cell (stderr, no traceback): "CourseError: ...".

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+import time
 from pathlib import Path
 
 import pytest
@@ -24,8 +25,14 @@ def _slider(page, name: str):  # type: ignore[no-untyped-def]
     return page.locator(".widget-slider").filter(has=label)
 
 
-def _readout(slider) -> float:  # type: ignore[no-untyped-def]
-    return float(slider.locator(".widget-readout").inner_text())
+def _readout(slider, timeout: float = 20.0) -> float:  # type: ignore[no-untyped-def]
+    """Return the slider's readout, once JupyterLab has rendered it (a cell scrolled into
+    view is drawn a moment later: its readout is empty until then)."""
+    readout = slider.locator(".widget-readout")
+    deadline = time.monotonic() + timeout
+    while not (text := readout.inner_text().strip()) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    return float(text)
 
 
 def _wait_logged(page, command: str, timeout: float = 20_000) -> None:  # type: ignore[no-untyped-def]
