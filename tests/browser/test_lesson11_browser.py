@@ -30,7 +30,9 @@ def _readout(slider, timeout: float = 20.0) -> float:  # type: ignore[no-untyped
     view is drawn a moment later: its readout is empty until then)."""
     readout = slider.locator(".widget-readout")
     deadline = time.monotonic() + timeout
-    while not (text := readout.inner_text().strip()) and time.monotonic() < deadline:
+    # text_content, not inner_text: a cell JupyterLab has not drawn yet is hidden (its text
+    # reads '' to inner_text), though its widget holds the value
+    while not (text := (readout.text_content() or "").strip()) and time.monotonic() < deadline:
         time.sleep(0.1)
     return float(text)
 
@@ -54,24 +56,31 @@ def _wait_logged(page, command: str, timeout: float = 20_000) -> None:  # type: 
 
 
 def test_lesson11_panel_slider_sets_the_node(page, lab, artifacts: Path) -> None:
-    terminal = None
+    terminal = runner = None
     try:
         run_all_cells(page)
         velocity = _slider(page, "velocity")
         velocity.wait_for(timeout=60_000)
         wait_all_ran(page, artifacts)  # the kernel handles widget messages only when idle
 
-        # With travel_time 0.0 the node drives until velocity is 0.0, so no trip ends (and
-        # resets velocity) before `ros2` reads it. The exercise's re-arm leaves it at 0.0;
-        # otherwise Home on its focused handle moves it there.
-        travel = _slider(page, "travel_time")
-        travel.scroll_into_view_if_needed()
-        if _readout(travel) != 0.0:
-            travel.locator(".noUi-handle").focus()
-            page.keyboard.press("Home")
-            _wait_logged(page, f"ros2 param set {NODE} travel_time 0.0")
+        # Run All ends with lesson 11's panel exercise, whose node the lesson stopped: the
+        # learner starts it again from a terminal (travel_time 0.0: it drives until velocity
+        # is 0.0, so no trip ends and resets velocity before `ros2` reads it).
+        runner = Terminal(page, lab.base_url, lab.token)
+        runner.run(
+            "ros2 run parameter_descriptors descriptor_vel --ros-args -p use_sim_time:=true",
+            "Ready:",
+            timeout=30,
+        )
+        terminal = Terminal(page, lab.base_url, lab.token)
 
-        velocity.scroll_into_view_if_needed()
+        # JupyterLab lays out a cell scrolled into view a frame or two later (its cells off
+        # screen have no layout, so Playwright may take one for shown): scroll it to the
+        # middle, then wait until the handle is shown before reading its box
+        velocity.evaluate("el => el.scrollIntoView({block: 'center'})")
+        page.wait_for_timeout(1000)
+        velocity.evaluate("el => el.scrollIntoView({block: 'center'})")
+        velocity.locator(".noUi-handle").wait_for(state="visible", timeout=20_000)
         before = _readout(velocity)
         handle = velocity.locator(".noUi-handle").bounding_box()
         track = velocity.locator(".noUi-target").bounding_box()
@@ -91,7 +100,6 @@ def test_lesson11_panel_slider_sets_the_node(page, lab, artifacts: Path) -> None
         assert abs(shown - TARGET) <= 3 * STEP, f"the drag ended at {shown}, aimed at {TARGET}"
         _wait_logged(page, f"ros2 param set {NODE} velocity {shown!r}")
 
-        terminal = Terminal(page, lab.base_url, lab.token)
         terminal.run(f"ros2 param get {NODE} velocity", "Double value is:")
         page.wait_for_function(  # the whole line, up to its end
             r"() => /Double value is: \S+\r?\n/.test(window.__term.out)", timeout=5_000
@@ -101,6 +109,7 @@ def test_lesson11_panel_slider_sets_the_node(page, lab, artifacts: Path) -> None
         assert value is not None, got
         assert abs(float(value[1]) - shown) <= STEP / 2, f"slider shows {shown}; ros2 says {got}"
     finally:
-        if terminal is not None:
-            terminal.close()
+        for shell in (terminal, runner):
+            if shell is not None:
+                shell.close()  # its shell ends, and the node it runs with it
         page.screenshot(path=str(artifacts / "page_last.png"))
