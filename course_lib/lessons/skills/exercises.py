@@ -25,6 +25,7 @@ from .judge import (
     judge_drive,
     judge_startup,
 )
+from .measure import PARAM_ERRORS
 
 __all__ = [
     "DriveExercise",
@@ -41,7 +42,7 @@ DESCRIPTOR_VEL = "/descriptor_vel_node"
 def _set(node: str, name: str, value: float) -> None:
     from ...ros2.api import nodes_and_params as api
 
-    with contextlib.suppress(Exception):  # the node may be gone: then nothing drives
+    with contextlib.suppress(*PARAM_ERRORS):  # the node may be gone: then nothing drives
         if node in api.node_list() and api.param_get(node, name).value != value:
             api.param_set(node, name, value)  # only a change: the speed plot marks each set
 
@@ -151,7 +152,7 @@ class DriveExercise(SkillExercise):
         driven = measure.distance_m(before.pose, after.pose)
         try:
             value = api.param_get(self.node, "velocity").value
-        except Exception:
+        except PARAM_ERRORS:
             value = None
         elsewhere, other = "", 0.0
         if abs(driven - s.distance_m) > s.tolerance_m:
@@ -382,7 +383,7 @@ class SavedPanelExercise(_StartupExercise):
         self.trace.wait_until(t0 + self.settings.window_s, timeout=self.settings.window_s + 5)
         try:
             now = float(api.param_get(self.node, self.param).value)
-        except Exception:
+        except PARAM_ERRORS:
             now = 0.0
         start_pose = world.odom().pose
         if not api.param_set(self.node, "velocity", v).successful:

@@ -21,6 +21,8 @@ from typing import Any
 
 import yaml
 
+from ...core.errors import CourseError
+
 __all__ = [
     "FileValue",
     "OdomTrace",
@@ -32,6 +34,9 @@ __all__ = [
     "params_file_value",
     "steady_odom",
 ]
+
+# what a parameter read or write raises when the node is gone or does not answer
+PARAM_ERRORS = (CourseError, RuntimeError, TimeoutError)
 
 _STEADY_S = 0.2  # simulated seconds between the readings compared
 _SPEED_TOLERANCE = 0.002  # m/s
@@ -188,7 +193,7 @@ def node_holding(target: float, graded: str, tolerance: float) -> tuple[str, flo
             continue
         try:
             value = api.param_get(name, "velocity").value
-        except Exception:  # no such parameter, or the node just left
+        except PARAM_ERRORS:  # no such parameter, or the node just left
             continue
         if isinstance(value, float) and abs(value - target) <= tolerance:
             return name, value

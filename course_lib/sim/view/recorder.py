@@ -15,6 +15,7 @@ import mujoco
 
 from ...viz.replay import ReplayFrame, write_replay
 from ..world.model import BASE_HEIGHT_M, WHEEL_JOINTS
+from .run_log import wheel_angles
 
 __all__ = ["Recorder", "plan_frames"]
 
@@ -41,9 +42,8 @@ class Recorder:
         ]
 
     def _on_joints(self, msg: Any) -> None:
-        positions = dict(zip(msg.name, msg.position, strict=False))
         with self._lock:
-            self._wheels = [positions.get(j, 0.0) for j in WHEEL_JOINTS]
+            self._wheels = list(wheel_angles(msg))
 
     def _on_odom(self, msg: Any) -> None:
         stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9

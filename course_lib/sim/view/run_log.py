@@ -23,7 +23,14 @@ import mujoco
 from ...viz.replay import ReplayFrame
 from ..world.model import BASE_HEIGHT_M, WHEEL_JOINTS
 
-__all__ = ["PoseLog", "PoseSample", "RunLog", "replay_frames", "run_log"]
+__all__ = ["PoseLog", "PoseSample", "RunLog", "replay_frames", "run_log", "wheel_angles"]
+
+
+def wheel_angles(msg: Any) -> tuple[float, float]:
+    """Return the left and right wheel angles (rad) of a /joint_states message (0 if absent)."""
+    positions = dict(zip(msg.name, msg.position, strict=False))
+    left, right = (positions.get(joint, 0.0) for joint in WHEEL_JOINTS)
+    return left, right
 
 
 @dataclass(frozen=True)
@@ -99,8 +106,7 @@ class RunLog(PoseLog):
         ]
 
     def _on_joints(self, msg: Any) -> None:
-        positions = dict(zip(msg.name, msg.position, strict=False))
-        self._wheels = (positions.get(WHEEL_JOINTS[0], 0.0), positions.get(WHEEL_JOINTS[1], 0.0))
+        self._wheels = wheel_angles(msg)
 
     def _on_odom(self, msg: Any) -> None:
         stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
