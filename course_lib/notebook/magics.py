@@ -113,6 +113,7 @@ def run_line(line: str) -> CommandResult:
     from ..ros2.api.nodes_and_params import client
     from ..ros2.command.commands import Context, execute
     from ..ros2.verbs.console import CollectingConsole
+    from ..session.session import get_session
 
     argv = shlex.split(line)
     if argv and argv[0] == "ros2":
@@ -120,7 +121,12 @@ def run_line(line: str) -> CommandResult:
     command = "ros2 " + " ".join(shlex.quote(a) for a in argv)
     console = CollectingConsole(width=80)
     notes: list[str] = []
-    ctx = Context(console, client, background_run=functools.partial(_background_run, notes=notes))
+    ctx = Context(
+        console,
+        client,
+        env=get_session().env,  # this kernel's session: its domain, whatever os.environ says
+        background_run=functools.partial(_background_run, notes=notes),
+    )
     with acting_door("%ros2"):
         output = console.result(execute(argv, ctx))
     hint = course_hints.command_hint(argv, output.stdout, output.stderr, client)

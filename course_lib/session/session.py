@@ -153,13 +153,7 @@ class Session:
         self._lease = lease_domain(base)
         self.domain_id = self._lease.domain_id
         self.env = session_env(self.domain_id, base)
-        # This process's own participant reads discovery settings from os.environ, and its
-        # shell commands (`!ros2 ...`) and launch files see the workspace as if sourced.
-        overlay = (*isolation_env(0), _PROFILE_ENV, "AMENT_PREFIX_PATH", "COLCON_PREFIX_PATH")
-        overlay += tuple(ROS_DISTRO_ENV)
-        os.environ.update({k: self.env[k] for k in overlay if k in self.env})
-        os.environ[DOMAIN_ENV] = os.environ[SESSION_DOMAIN_ENV] = str(self.domain_id)
-        os.environ.pop("ROS_LOCALHOST_ONLY", None)
+        self._export()
         ament.use_workspace_interfaces()  # messages built in rosject/, such as tf2_msgs
         self._children: list[ChildProcess] = []
         self._lock = threading.Lock()
@@ -255,6 +249,18 @@ class Session:
         for stopper in stoppers:
             stopper.join()
 
+    def _export(self) -> None:
+        """Put this session's domain and workspace in os.environ.
+
+        This process's own participant reads discovery settings from os.environ, and its
+        shell commands (`!ros2 ...`) and launch files see the workspace as if sourced.
+        """
+        overlay = (*isolation_env(0), _PROFILE_ENV, "AMENT_PREFIX_PATH", "COLCON_PREFIX_PATH")
+        overlay += tuple(ROS_DISTRO_ENV)
+        os.environ.update({k: self.env[k] for k in overlay if k in self.env})
+        os.environ[DOMAIN_ENV] = os.environ[SESSION_DOMAIN_ENV] = str(self.domain_id)
+        os.environ.pop("ROS_LOCALHOST_ONLY", None)
+
     def close(self) -> None:
         """Stop the children and tear rclpy down in the order that never aborts; idempotent."""
         if self._closed:
@@ -268,6 +274,9 @@ class Session:
         if os.environ.get(SESSION_DOMAIN_ENV) == str(self.domain_id):
             os.environ.pop(DOMAIN_ENV, None)
             os.environ.pop(SESSION_DOMAIN_ENV, None)
+        current = _current  # read without the lock: get_session() closes under it
+        if current is not None and current is not self and not current.closed:
+            current._export()  # another session of this process was made and closed meanwhile
 
 
 _current: Session | None = None
