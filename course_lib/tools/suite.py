@@ -29,7 +29,6 @@ def pytest_argv(extra: list[str]) -> list[str]:
         workers,
         "--dist",
         "loadfile",
-        "--no-loadscope-reorder",  # tests/conftest.py hands the longest files out first
         # Tests of real processes on 2 busy cores: one that fails is run again (up to twice)
         # and reported as a rerun, so an intermittent failure stays visible in the summary.
         "--reruns",
