@@ -8,6 +8,7 @@ import pytest
 
 from course_lib.session.session import Session
 
+
 @pytest.fixture(scope="module")
 def session() -> Iterator[Session]:
     """Yield a course session with its own ROS domain for one test module."""
