@@ -16,7 +16,9 @@ in COURSE_VIEWER_ORIGINS (comma-separated, e.g. `https://hub.example.org`) or `-
 Besides meshcat's commands, the command socket takes two of the course's own, so a live view
 costs nothing while no browser watches it: `set_transforms` (one frame's poses in one message,
 forwarded to the browsers as one websocket message, kept for a browser that connects later)
-and `watchers` (no data); both answer with the number of browsers connected, in ASCII digits.
+and `watchers` (no data); both answer with the number of browsers connected that someone can
+see, in ASCII digits (a page whose notebook tab is in the background says `hidden` on its
+websocket and gets no poses until it says `shown`).
 """
 
 from __future__ import annotations
@@ -91,6 +93,32 @@ document.getElementById("tf-frames").addEventListener("change", function (event)
 // The websocket lives at the page's own prefix: "/" directly, "/proxy/<port>/" behind Jupyter.
 var base = location.href.split(/[?#]/)[0].replace(/static\\/(index\\.html)?$/, "");
 viewer.connect(base.replace(/^http/, "ws"));
+// A view nobody can see (its notebook's tab in the background, scrolled out of sight, the
+// browser tab hidden) tells the server so, which then sends it no poses until it is seen
+// again. Frames drawn for a hidden view piled up and froze the page for 15-20 s when its
+// notebook's tab came back. Chromium runs animation frames even in an iframe under
+// `display: none`: what says "seen" is the pane's intersection with the top page's viewport.
+var shown = true, visible = {pane: true, tab: true};
+function tell(now) {
+  shown = now;
+  var socket = viewer.connection;
+  if (socket && socket.readyState === 1) { socket.send(now ? "shown" : "hidden"); }
+}
+function update() {
+  var now = visible.pane && visible.tab;
+  if (now !== shown) { tell(now); }
+}
+new IntersectionObserver(function (entries) {
+  visible.pane = entries[entries.length - 1].isIntersecting;
+  update();
+}).observe(document.getElementById("meshcat-pane"));
+document.addEventListener("visibilitychange", function () {
+  visible.tab = document.visibilityState === "visible";
+  update();
+});
+if (viewer.connection) {
+  viewer.connection.addEventListener("open", function () { if (!shown) { tell(false); } });
+}
 </script></body></html>
 """
 
@@ -116,10 +144,26 @@ def origin_allowed(origin: str, host: str | None, allowed: Iterable[str] = ()) -
 
 
 class _SameOriginWebSocket(WebSocketHandler):
-    """meshcat's websocket, for pages of the origins the course serves only."""
+    """meshcat's websocket, for pages of the origins the course serves only.
+
+    The page says `hidden` when nobody can see it (it draws no frames) and `shown` again: a
+    hidden page gets no poses, and is no watcher.
+    """
+
+    hidden = False
 
     def check_origin(self, origin: str) -> bool:
         return origin_allowed(origin, self.request.headers.get("Host"), self.bridge.origins)
+
+    def on_message(self, message: str | bytes) -> None:
+        if message in ("hidden", b"hidden"):
+            self.hidden = True
+        elif message in ("shown", b"shown"):
+            if self.hidden and self.bridge.latest_poses is not None:
+                self.write_message(self.bridge.latest_poses, binary=True)
+            self.hidden = False
+        else:
+            super().on_message(message)
 
 
 def command_socket_url(pid: int | None = None) -> str:
@@ -170,13 +214,18 @@ class LocalBridge(ZMQWebSocketBridge):
         command = frames[0]
         if command == POSES_COMMAND and len(frames) == 3:
             self.latest_poses = frames[2]
-            self.forward_to_websockets(frames)
+            for websocket in self._seen():
+                websocket.write_message(frames[2], binary=True)
         elif command != WATCHERS_COMMAND:
             if command == b"delete":
                 self.latest_poses = None  # a scene drawn again starts from its own poses
             super().handle_zmq(frames)
             return
-        self.zmq_socket.send(str(len(self.websocket_pool)).encode())
+        self.zmq_socket.send(str(len(self._seen())).encode())
+
+    def _seen(self) -> list[WebSocketHandler]:
+        """Return the connected pages that someone can see (see _SameOriginWebSocket)."""
+        return [w for w in self.websocket_pool if not getattr(w, "hidden", False)]
 
     def send_scene(self, websocket: WebSocketHandler) -> None:
         """Send the scene to a browser that just connected, then the latest poses."""

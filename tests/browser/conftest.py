@@ -59,9 +59,13 @@ def browser() -> Iterator[object]:
 
 @pytest.fixture
 def artifacts(request: pytest.FixtureRequest) -> Path:
-    """Return this test's folder for screenshots (emptied first; gitignored)."""
+    """Return this test's folder for screenshots (gitignored), empty; what an earlier attempt
+    left there (a rerun's failed first attempt) is kept beside it as `<name>.previous`."""
     folder = ARTIFACTS / request.node.name
-    shutil.rmtree(folder, ignore_errors=True)
+    previous = folder.with_name(folder.name + ".previous")
+    if folder.exists():
+        shutil.rmtree(previous, ignore_errors=True)
+        folder.rename(previous)
     folder.mkdir(parents=True)
     return folder
 

@@ -1,6 +1,7 @@
 """The live 3D view costs nothing unwatched (issue 23): LiveView sends a frame's poses only
 while a browser is connected to the meshcat server and only when the robot moved, all of a
-frame's poses in one websocket message; a browser that connects late gets the latest poses."""
+frame's poses in one websocket message; a browser that connects late gets the latest poses; a
+page nobody can see (its notebook's tab in the background) gets none and is no watcher."""
 
 from __future__ import annotations
 
@@ -57,6 +58,11 @@ class Browser:
             for m in (umsgpack.unpackb(raw) for raw in list(self.messages))
             if m.get("type") == "set_transforms"
         ]
+
+    def say(self, text: str) -> None:
+        """Send what the viewer page sends when nobody can see it (`hidden`) or again (`shown`)."""
+        self.loop.call_soon_threadsafe(self.connection.write_message, text)
+        time.sleep(0.2)
 
     def close(self) -> None:
         self.loop.call_soon_threadsafe(self.connection.close)
@@ -146,3 +152,37 @@ def test_a_watched_view_gets_one_message_per_moved_frame(view) -> None:  # type:
         browser.close()
     _tick(live, model, data, moving=True, ticks=25)  # the browser left: the view stops
     assert live.watchers == 0
+
+
+def test_a_hidden_page_gets_no_poses_and_is_no_watcher(view) -> None:  # type: ignore[no-untyped-def]
+    """Poses piled up for a page in a background tab froze JupyterLab for 20 s when the tab
+    came back (the robot driving for 30 s meanwhile): a hidden page gets none."""
+    live, model, data, port = view
+    seen, hidden = Browser(port), Browser(port)
+    try:
+        _tick(live, model, data, moving=True, ticks=10)
+        assert live.watchers == 2
+        hidden.say("hidden")
+        before_seen, before_hidden = len(seen.poses()), len(hidden.poses())
+        _tick(live, model, data, moving=True, ticks=20)
+        time.sleep(0.3)
+        assert len(seen.poses()) - before_seen == 20
+        assert len(hidden.poses()) == before_hidden, "a hidden page was sent poses"
+        assert live.watchers == 1
+        seen.say("hidden")
+        _tick(live, model, data, moving=True, ticks=20)
+        assert live.watchers == 0  # nobody sees the view: the simulation sends nothing
+        sent = live.updates
+        _tick(live, model, data, moving=True, ticks=20)
+        assert live.updates == sent
+        hidden.say("shown")  # its tab in front again: the latest poses at once, then each move
+        assert len(hidden.poses()) == before_hidden + 1
+        _tick(live, model, data, moving=False, ticks=25)  # the probe finds it
+        time.sleep(0.3)
+        poses = hidden.poses()
+        at = poses[-1]["paths"].index(BASE)
+        x = struct.unpack_from("<f", poses[-1]["matrices"].data, (16 * at + 12) * 4)[0]
+        assert abs(x - data.xpos[model.body("base_link").id][0]) < 1e-3, "the view is stale"
+    finally:
+        seen.close()
+        hidden.close()
