@@ -59,8 +59,8 @@ def browser() -> Iterator[object]:
 
 @pytest.fixture
 def artifacts(request: pytest.FixtureRequest) -> Path:
-    """Return this test's folder for screenshots (gitignored), empty; what an earlier attempt
-    left there (a rerun's failed first attempt) is kept beside it as `<name>.previous`."""
+    """Return this test's folder for screenshots (gitignored), empty; what the test's earlier
+    attempt left there (a rerun's failed one, or the last run's) is kept as `<name>.previous`."""
     folder = ARTIFACTS / request.node.name
     previous = folder.with_name(folder.name + ".previous")
     if folder.exists():
