@@ -315,7 +315,7 @@ class LaunchExercise(_StartupExercise):
         return [h.child for h in self.lesson.state.get("launches", [])]
 
     def _started(self) -> tuple[Any, list[Any], Path | None]:
-        from ...launch.command.resolve import resolve_launch_file
+        from ...launch.command.resolve import LaunchCommandError, resolve_launch_file
 
         fresh = [h for h in self.lesson.state.get("launches", []) if h.pid not in self._known]
         if not fresh:
@@ -325,7 +325,7 @@ class LaunchExercise(_StartupExercise):
         file = rest.pop(0) if rest and ":=" not in rest[0] else None
         try:
             path, _args = resolve_launch_file(handle.argv[0], file, rest)
-        except Exception:  # the launch itself said what was wrong
+        except LaunchCommandError:  # no such package or file: the launch itself said so
             return handle.child, handle.child.lines, None
         return handle.child, handle.child.lines, Path(path)
 

@@ -10,6 +10,7 @@ running now.
 from __future__ import annotations
 
 import itertools
+import logging
 import math
 import re
 import threading
@@ -22,6 +23,8 @@ from typing import Any
 import yaml
 
 from ...core.errors import CourseError
+
+_log = logging.getLogger(__name__)
 
 __all__ = [
     "FileValue",
@@ -175,7 +178,8 @@ def launch_file_value(path: Path, executable: str) -> FileValue:
 
     try:
         report = dry_run(str(path))
-    except Exception:  # the launch itself says what is wrong when it runs
+    except Exception as error:  # the learner's own code: anything; the launch shows it too
+        _log.info("launch file %s could not be planned: %r", path, error)
         return FileValue(problem="no_parameter")
     for plan in report.nodes:
         if Path(plan.cmd[0]).name == executable:

@@ -26,6 +26,25 @@ pytestmark = [pytest.mark.ros, pytest.mark.slow]
 TWIST = "geometry_msgs/msg/Twist"
 
 
+_DOMAINS: set[int] = set()  # every domain this module's sessions used (one closes on purpose)
+
+
+@pytest.fixture(autouse=True)
+def _note_domain() -> None:
+    _DOMAINS.add(get_session().domain_id)
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _no_daemon_left() -> Iterator[None]:
+    """Stop the terminal `ros2` daemons this module's commands started: owned by the shell
+    that runs pytest, each would serve a released domain for its idle time (10 min)."""
+    yield
+    from course_lib.ros2.node.connect import stop_daemon
+
+    for domain in _DOMAINS:
+        stop_daemon(domain)
+
+
 def _failed(lesson: Lesson) -> set[str]:
     return {c.what for c in lesson.self_check().checks if not c.passed}
 
