@@ -222,15 +222,6 @@ def only_driver(lesson: Any, executable: str, node: str, others: list[str]) -> C
     )
 
 
-def skill_passed(lesson: Any, name: str, what: str) -> Check:
-    """Check that the lesson's skill exercise `name` (its attempt log's key) passed."""
-    return check(
-        f"the {what} exercise passed",
-        name in lesson.state.get("exercises_passed", set()),
-        "do what the exercise's cell asks, then run its `.check()` cell and this one again.",
-    )
-
-
 def _standing_still(lesson: Any) -> bool:
     """Return True if this lesson's robot stands still now (measured on /odom)."""
     world = lesson._world
@@ -256,7 +247,6 @@ def _lesson_7(lesson: Any) -> list[Check]:
             _own_node_running(lesson) and _velocity() == 0.0 and _standing_still(lesson),
             "`%ros2 param set /param_vel_node velocity 0.0`, then the cell after it.",
         ),
-        skill_passed(lesson, "07 drive", "drive"),
     ]
 
 
@@ -315,7 +305,6 @@ def _lesson_9(lesson: Any) -> list[Check]:
             value == 0.3 and _planned_velocity(dry_run, path) == 0.3,
             "run the cells that copy and edit the file.",
         ),
-        skill_passed(lesson, "09 params file", "params-file"),
     ]
 
 
@@ -338,7 +327,6 @@ def _lesson_10(lesson: Any) -> list[Check]:
             "/param_vel_node" not in _nodes(),
             "run the cells that call `.stop()`.",
         ),
-        skill_passed(lesson, "10 launch file", "launch-file"),
     ]
 
 
@@ -371,7 +359,6 @@ def _lesson_11(lesson: Any) -> list[Check]:
             lesson.state.get("exercise_passed", False),
             "change the two numbers of the exercise cell and run it and the check again.",
         ),
-        skill_passed(lesson, "11 saved panel", "saved-panel"),
     ]
 
 
