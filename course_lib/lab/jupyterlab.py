@@ -12,6 +12,7 @@ from typing import Any
 
 from ..core.paths import NOTEBOOKS_DIR, PACKAGE_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
 from ..core.procfs import start_time
+from ..core.server_urls import SERVER_ROOT_ENV
 from ..processes.children import ChildProcess, spawn
 from ..processes.domain import lease_domain
 from ..processes.lab_markers import lab_clone_marker, lab_marker, lab_start_marker
@@ -109,7 +110,8 @@ def run_lab(
     """Start the ros2 daemon and JupyterLab in a leased domain; stop both on Ctrl-C.
 
     `server_argv` builds the Jupyter server's command line from the extra options (a hub's
-    learner runs jupyterhub-singleuser instead of jupyter lab), run in `cwd`.
+    learner runs jupyterhub-singleuser instead of jupyter lab), run in `cwd`: the folder it
+    serves (its `root_dir`).
     """
     note = clean_up_killed_labs()
     if note:
@@ -123,6 +125,7 @@ def run_lab(
     clone.write_text(str(REPO_ROOT))
     env = session_env(lease.domain_id)
     env["COURSE_LAB"] = "1"
+    env[SERVER_ROOT_ENV] = str(cwd)  # the folder the server serves: kernels link files in it
     machine = _start_machine(env, cwd)
     env[SOCKET_ENV] = str(machine.path)
     print(

@@ -169,7 +169,10 @@ class Lesson:
         before = {n.full_name for n in client().node_names()} if files else set()
         child = self.session.run(package, executable, *args, cwd=os.getcwd())
         self.started[executable] = child
-        first = child.wait_for_line(lambda line: line.text.startswith("["), timeout)
+        child.wait_for_start(timeout)  # a node failing at start-up: to its last line
+        first = None
+        if child.alive:
+            first = child.wait_for_line(lambda line: line.text.startswith("["), timeout)
         if first is not None and child.alive:
             remember(child, executable)
             client().wait_all_seen(timeout=3.0)
@@ -184,7 +187,7 @@ class Lesson:
             return LogLines([f"$ {command}", first.text], notes)
         code = child.wait(timeout)
         last = [ln.text for ln in child.lines if ln.text.strip()][-1:]
-        hint = hints.crash_hint(last, files)
+        hint = hints.crash_hint(last, files, cwd=os.getcwd())
         return LogLines(
             [f"$ {command}", *last, f"{RUN_PREFIX} Process exited with failure {code}"],
             [hint] if hint else [],

@@ -12,6 +12,7 @@ from __future__ import annotations
 import difflib
 import html
 import itertools
+import os
 import re
 from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
@@ -50,6 +51,10 @@ UNABLE_TO_FIND = re.compile(r"Unable to find node '([^']*)'")
 FILE_TYPE_CRASH = re.compile(  # rclpy's words when a params file's value has the wrong type
     r"InvalidParameterTypeException: Trying to set parameter '([^']+)' to '([^']*)' of type "
     r"'(\w+)', expecting type '(\w+)'"
+)
+FILE_UNREAD_CRASH = re.compile(  # rcl's words when it cannot open or parse a params file
+    r"Couldn't parse params file: '--params-file (?P<file>[^']+)'\. Error: (?P<error>.+?)"
+    r"(?:, at [^,]+:\d+)*$"
 )
 _VALUED_OPTIONS = {"--timeout", "--spin-time", "--filter", "--param-prefixes"}
 _WORDS = {
@@ -273,9 +278,10 @@ def started_nodes(log_lines: Iterable[str], before: set[str], now: set[str]) -> 
     return sorted((now - before) | logged)
 
 
-def crash_hint(log_lines: Iterable[str], files: Sequence[str]) -> str | None:
-    """Return the hint for a node that a params file's value of the wrong type stopped at
-    start-up (rclpy's InvalidParameterTypeException in its last lines), or None."""
+def crash_hint(log_lines: Iterable[str], files: Sequence[str], *, cwd: str = "") -> str | None:
+    """Return the hint for a node that a params file stopped at start-up, or None: rcl could
+    not open or parse the file (rclpy's RCLError), or a value has the wrong type (rclpy's
+    InvalidParameterTypeException). `cwd` is where the node ran (a relative path starts there)."""
     if not _enabled or not files:
         return None
     for line in log_lines:
@@ -285,7 +291,27 @@ def crash_hint(log_lines: Iterable[str], files: Sequence[str]) -> str | None:
             reason = f"Wrong parameter type, expected 'Type.{expected}' got 'Type.{got}'"
             hint = type_hint(reason, name, value)
             return f"in {', '.join(files)}: {hint}" if hint else None
+        unread = FILE_UNREAD_CRASH.search(line)
+        if unread:
+            return _unread_file_hint(unread["file"], unread["error"], cwd)
     return None
+
+
+def _unread_file_hint(file: str, error: str, cwd: str) -> str:
+    """Return the hint for a params file that rcl could not open or parse."""
+    if error.startswith("Error opening YAML file"):
+        where = f" in {cwd}" if cwd and not os.path.isabs(file) else ""
+        folder = os.path.dirname(file) or "."
+        return (
+            f"there is no file {file}{where} (a relative path starts in the folder the node "
+            f"runs in): check its name and folder, for example with `%ls {folder}`."
+        )
+    line = re.search(r"line(?:_num)? (\d+)", error)
+    where = f"rcl stopped reading it at line {line[1]}" if line else f"rcl says: {error}"
+    return (
+        f"{file} is not a params file ROS can read ({where}): look there for a bracket or "
+        "quote left open, a tab, or a line indented differently from its neighbours."
+    )
 
 
 # --- live: the graph and the nodes' parameters ----------------------------------------------

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 import html
+import os
 import shlex
 from collections.abc import Sequence
 from typing import Any
@@ -86,10 +87,9 @@ def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) ->
     files = course_hints.params_files(cmd)
     before = {n.full_name for n in client().node_names()} if files else set()
     child = get_session().spawn(cmd, name=name, cwd=ctx.cwd)
-    # a params file's hint needs the node's first line (or its traceback): wait longer for it
-    child.wait_for_line(lambda _line: True, timeout=FILE_RUN_WAIT_S if files else 3.0)
-    if files and child.lines and child.lines[0].text.startswith("Traceback"):
-        child.wait(FILE_RUN_WAIT_S)  # a bad value in the file: its last line names it
+    # a params file's hint needs the node's first line (or its traceback): wait longer for it;
+    # a node failing at start-up is waited for to its end (its last line says why)
+    child.wait_for_start(FILE_RUN_WAIT_S if files else 3.0, crash_wait=FILE_RUN_WAIT_S)
     remember(child, name)
     if child.alive:  # the next command (`%ros2 node list`) sees the new node, even under load
         client().wait_all_seen(timeout=RUN_SEEN_WAIT_S)
@@ -101,9 +101,12 @@ def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) ->
                 files, _started(child, before), client, cwd=ctx.cwd
             )
     elif files:
-        hint = course_hints.crash_hint((ln.text for ln in child.lines), files)
+        hint = course_hints.crash_hint(
+            (ln.text for ln in child.lines), files, cwd=ctx.cwd or os.getcwd()
+        )
         notes += [hint] if hint else []
-    for line in child.lines[:5]:
+    # a running node: its first lines; one that ended: all it said, as a terminal shows it
+    for line in child.lines[:5] if child.alive else child.lines:
         (ctx.console.err if line.stream == "stderr" else ctx.console.out)(line.text + "\n")
     return 0 if child.alive else int(child.returncode or 0)
 

@@ -53,6 +53,9 @@ SPAWNED_ENV = "COURSE_SPAWNED"
 _PR_SET_PDEATHSIG = 1
 _MAX_LINES = 5000
 _REAP_WAIT_S = 10.0  # after a child closed its output, at most, until it exits
+_TRACEBACK = "Traceback (most recent call last)"
+_LOGGED_ERROR = re.compile(r"\[(ERROR|FATAL)\] ")  # a ROS log line's level
+_NEXT_LINE_WAIT_S = 2.0  # after a first line at ERROR: does a traceback follow?
 T = TypeVar("T")
 _LIBC = ctypes.CDLL(None, use_errno=True)  # loaded once: preexec must not load libraries
 
@@ -259,6 +262,22 @@ class ChildProcess:
                 if remaining <= 0 or (not self.alive and not self._readers_running()):
                     return None
                 self._cond.wait(min(remaining, 0.1))
+
+    def wait_for_start(self, timeout: float, *, crash_wait: float = 10.0) -> OutputLine | None:
+        """Wait for the first line and return it. A traceback (the process is failing) is
+        waited for to its end, up to `crash_wait` s more, as is a traceback that follows a
+        first line at ERROR or FATAL (rcl's "Failed to parse global arguments" then rclpy's)."""
+        first = self.wait_for_line(lambda _line: True, timeout)
+        if first is None:
+            return None
+        if _LOGGED_ERROR.match(first.text):
+            then = self.wait_for_line(lambda line: line is not first, _NEXT_LINE_WAIT_S)
+            failing = then is not None and then.text.startswith(_TRACEBACK)
+        else:
+            failing = first.text.startswith(_TRACEBACK)
+        if failing:
+            self.wait(crash_wait)
+        return first
 
     def _readers_running(self) -> bool:
         return any(reader.is_alive() for reader in self._readers)

@@ -19,6 +19,7 @@ from typing import Any
 
 from ..core.errors import ProcessStartError
 from ..core.live_outputs import LIVE_MARK
+from ..core.server_urls import jupyter_base_url
 
 __all__ = ["Viewer", "viewer_url"]
 
@@ -33,8 +34,7 @@ def viewer_url(port: int, mode: str | None = None, environ: dict[str, str] | Non
         mode = "proxy" if importlib.util.find_spec("jupyter_server_proxy") else "direct"
     if mode == "direct":
         return f"http://127.0.0.1:{port}/static/"
-    base = env.get("JUPYTERHUB_SERVICE_PREFIX") or env.get("COURSE_JUPYTER_BASE_URL") or "/"
-    return f"{base.rstrip('/')}/proxy/{port}/static/"
+    return f"{jupyter_base_url(env)}proxy/{port}/static/"
 
 
 class Viewer:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 import shutil
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 import pytest
@@ -73,13 +73,25 @@ def artifacts(request: pytest.FixtureRequest) -> Path:
 @pytest.fixture(scope="module")
 def lab(request: pytest.FixtureRequest) -> Iterator[LabServer]:
     """Start a course JupyterLab on copies of the module's LESSONS."""
-    folder = ARTIFACTS / f"lab-{request.module.__name__}"
-    shutil.rmtree(folder, ignore_errors=True)
-    server = LabServer(request.module.LESSONS, folder)
+    server = _learners_lab(ARTIFACTS / f"lab-{request.module.__name__}", request.module.LESSONS)
     try:
         yield server
     finally:
         server.stop()
+
+
+def _learners_lab(root: Path, lessons: list[str], extra: Sequence[str] = ()) -> LabServer:
+    """Start a lab on copies of `lessons` laid out as a learner's copy on a hub is:
+    `notebooks/` with its own `my_files/` (what the lessons write, and what a relative path in
+    a command finds), `rosject` beside it. Never the repository's own `notebooks/my_files/`."""
+    from course_lib.core.paths import LEARNER_ROOT_ENV, ROSJECT_DIR
+    from course_lib.tools.testing import independent_env
+
+    shutil.rmtree(root, ignore_errors=True)
+    (root / "notebooks" / "my_files").mkdir(parents=True)
+    (root / "rosject").symlink_to(ROSJECT_DIR, target_is_directory=True)
+    env = independent_env(**{LEARNER_ROOT_ENV: str(root)})
+    return LabServer(lessons, root / "notebooks", env=env, extra=extra)
 
 
 @pytest.fixture(scope="module")
@@ -98,17 +110,9 @@ def lab_page(browser, request: pytest.FixtureRequest) -> Iterator[object]:  # ty
     own `my_files/`), and one browser tab on it with the file browser on the lessons."""
     from lab_ui import LabPage
 
-    from course_lib.core.paths import LEARNER_ROOT_ENV, ROSJECT_DIR
-    from course_lib.tools.testing import independent_env
-
-    root = ARTIFACTS / f"lab-{request.node.name}"
-    shutil.rmtree(root, ignore_errors=True)
-    (root / "notebooks" / "my_files").mkdir(parents=True)
-    (root / "rosject").symlink_to(ROSJECT_DIR, target_is_directory=True)
-    server = LabServer(
+    server = _learners_lab(
+        ARTIFACTS / f"lab-{request.node.name}",
         request.module.LESSONS,
-        root / "notebooks",
-        env=independent_env(**{LEARNER_ROOT_ENV: str(root)}),
         extra=["--LabApp.expose_app_in_browser=True"],  # the tests read cells from the model
     )
     try:

@@ -56,23 +56,20 @@ def _wait_logged(page, command: str, timeout: float = 20_000) -> None:  # type: 
 
 
 def test_lesson11_panel_slider_sets_the_node(page, lab, artifacts: Path) -> None:
-    terminal = runner = None
+    terminal = None
     try:
         run_all_cells(page)
         velocity = _slider(page, "velocity")
         velocity.wait_for(timeout=60_000)
         wait_all_ran(page, artifacts)  # the kernel handles widget messages only when idle
 
-        # Run All ends with lesson 11's panel exercise, whose node the lesson stopped: the
-        # learner starts it again from a terminal (travel_time 0.0: it drives until velocity
-        # is 0.0, so no trip ends and resets velocity before `ros2` reads it).
-        runner = Terminal(page, lab.base_url, lab.token)
-        runner.run(
-            "ros2 run parameter_descriptors descriptor_vel --ros-args -p use_sim_time:=true",
-            "Ready:",
-            timeout=30,
-        )
+        # Run All ends with the node restarted from the panel's saved file (travel_time 2.0):
+        # it runs, once. The learner sets travel_time 0.0 from a terminal (it drives until
+        # velocity is 0.0), so no trip ends and resets velocity before `ros2` reads it.
         terminal = Terminal(page, lab.base_url, lab.token)
+        listed, _code = terminal.run_to_end("ros2 node list")
+        assert [line.strip() for line in listed.splitlines()].count(NODE) == 1, listed
+        terminal.run(f"ros2 param set {NODE} travel_time 0.0", SET_OK, timeout=30)
 
         # JupyterLab lays out a cell scrolled into view a frame or two later (its cells off
         # screen have no layout, so Playwright may take one for shown): scroll it to the
@@ -109,7 +106,6 @@ def test_lesson11_panel_slider_sets_the_node(page, lab, artifacts: Path) -> None
         assert value is not None, got
         assert abs(float(value[1]) - shown) <= STEP / 2, f"slider shows {shown}; ros2 says {got}"
     finally:
-        for shell in (terminal, runner):
-            if shell is not None:
-                shell.close()  # its shell ends, and the node it runs with it
+        if terminal is not None:
+            terminal.close()
         page.screenshot(path=str(artifacts / "page_last.png"))

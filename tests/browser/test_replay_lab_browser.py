@@ -1,5 +1,5 @@
 """Replays on the ordinary path: two driving lessons in one lab (one world), then a kernel
-restart; each run's self-check links its own page, and JupyterLab opens the link."""
+restart; each run's self-check links its own page, and the link opens it, playing, in a tab."""
 
 from __future__ import annotations
 
@@ -45,9 +45,21 @@ def test_each_run_saves_its_replay_and_the_link_opens(lab_page, artifacts: Path)
         second = _linked(lab_page)
         assert second != first and (replays / first).exists() and (replays / second).exists()
 
+        # the link opens the server's raw file in a browser tab of its own, where it plays
+        # (JupyterLab's HTML viewer would show it with scripts off: a still 3D view)
         link = lab_page.page.locator(".jp-NotebookPanel:visible a", has_text=second)
-        link.click()
-        tab = lab_page.page.locator(".lm-TabBar-tabLabel", has_text=second)
-        tab.first.wait_for(timeout=30_000)  # JupyterLab opened the page in a tab of its own
+        with lab_page.page.context.expect_page(timeout=30_000) as opened:
+            link.click()
+        replay = opened.value
+        try:
+            replay.wait_for_load_state()
+            assert "/files/" in replay.url and replay.url.endswith(second), replay.url
+            replay.wait_for_function("viewer.animator.actions.length > 0", timeout=30_000)
+            time_played = "viewer.animator.actions.reduce((m, a) => Math.max(m, a.time), 0)"
+            replay.wait_for_function(f"{time_played} > 0.3", timeout=30_000)  # it plays
+            assert replay.locator("#needs-scripts").count() == 0
+            replay.screenshot(path=str(artifacts / "replay_tab.png"))
+        finally:
+            replay.close()
     finally:
         lab_page.screenshot(artifacts / "page_last.png")

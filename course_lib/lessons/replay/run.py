@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from ...core.paths import learner_notebooks_dir
+from ...core.server_urls import served_file_url
 
 __all__ = ["DRIVEN_NODES", "KEEP", "LessonRun", "ReplayLink", "replay_dir"]
 
@@ -60,20 +61,23 @@ def _relative(path: Path) -> str:
 
 
 class ReplayLink:
-    """The line a lesson shows for its saved replay: a link JupyterLab opens."""
+    """The line a lesson shows for its saved replay: a link that opens it in a browser tab."""
 
     def __init__(self, path: Path) -> None:
         self.path = path
-        self.href = _relative(path)  # relative to the notebooks: what JupyterLab opens
+        self.href = _relative(path)  # relative to the notebooks: the name the learner reads
+        # in a lab, the server's raw file (it plays: its scripts run, sandboxed); elsewhere
+        # (nbval, a plain kernel) the relative name, which JupyterLab opens in its viewer
+        self.url = served_file_url(path) or self.href
 
     def __repr__(self) -> str:
         return f"Replay of this run, saved (opens without a kernel): {self.href}"
 
     def _repr_html_(self) -> str:
-        href = html.escape(self.href)
         return (
-            f'<p>Replay of this run, saved (opens without a kernel): <a href="{href}" '
-            f'target="_blank">{href}</a></p>'
+            "<p>Replay of this run, saved (opens without a kernel): "
+            f'<a href="{html.escape(self.url)}" target="_blank" rel="noopener">'
+            f"{html.escape(self.href)}</a></p>"
         )
 
 

@@ -58,6 +58,20 @@ HINTS: dict[str, tuple[str, str, str]] = {
         "convert it.",
         "write the value with a decimal point, `{target:.2f}`, in {source}.",
     ),
+    "missing_file": (
+        "the node's last line says why it ended: rcl could not open the params file.",
+        "a relative path after `--params-file` starts in the folder the node runs in (the "
+        "notebook's): check the file's name and folder, for example with `%ls my_files`.",
+        "{how}",
+    ),
+    "unreadable": (
+        "the node's last line says why it ended: rcl could not parse the params file (it "
+        "names the line).",
+        "look at {source} with `lesson.show_file(...)`: a bracket or quote left open, a tab, "
+        "or a line indented differently from its neighbours.",
+        "the file holds `{node}:`, under it `  ros__parameters:`, under that "
+        "`    {param}: {target:.2f}`.",
+    ),
     "no_file": (
         "the value must be there from the node's first second: give it to the node at start-up.",
         "`ros2 run` takes a params file after `--ros-args`: `--params-file <file>`.",
@@ -97,6 +111,8 @@ _MESSAGES = {
     "(± {tolerance_cm:g} cm).",
     "not_started": "no {executable} was started by this lesson since the exercise was armed.",
     "integer": "{node} did not start: its {param} is an integer.",
+    "missing_file": "{node} did not start: there is no file {source}.",
+    "unreadable": "{node} did not start: ROS cannot read {source}.",
     "no_file": "{node} started without a params file.",
     "wrong_key": "{node} started with {param} {first:g}: the params file did not reach it.",
     "no_parameter": "{node} started with {param} {first:g}: the launch file sets none.",
@@ -190,7 +206,7 @@ class StartupAttempt:
 
     started: bool  # a node was started by this lesson since the exercise was armed
     source: str = ""  # the file meant to give the value (params or launch file); "" for none
-    problem: str = ""  # what reading that file found: "", integer, wrong_key, no_parameter
+    problem: str = ""  # what reading that file found (see measure.FileValue)
     written: str = ""  # the value as the file writes it (for the integer hint)
     key: str = ""  # the params file's top key
     first: float = 0.0
@@ -238,8 +254,8 @@ def judge_startup(
     right_first = abs(attempt.first - task.target) < 1e-6
     if not attempt.started:
         return _failed("not_started", number, words, show_hints)
-    if attempt.problem == "integer":
-        return _failed("integer", number, words, show_hints)
+    if attempt.problem in ("integer", "missing_file", "unreadable"):  # it ended at start-up
+        return _failed(attempt.problem, number, words, show_hints)
     if task.needs_file and not attempt.source:
         return _failed("no_file", number, words, show_hints)
     if attempt.problem in ("wrong_key", "no_parameter") and not right_first:

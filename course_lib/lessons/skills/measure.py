@@ -141,7 +141,7 @@ class FileValue:
     """What a file gives the node: its velocity, or why it gives none."""
 
     value: float | None = None
-    problem: str = ""  # "", integer, wrong_key, no_parameter
+    problem: str = ""  # "", integer, wrong_key, no_parameter, missing_file, unreadable
     written: str = ""
     key: str = ""
 
@@ -160,8 +160,10 @@ def params_file_value(path: Path, node: str, param: str = "velocity") -> FileVal
     """Return the `param` a params file gives `node` (as rcl reads it: its key must match)."""
     try:
         data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        return FileValue(problem="missing_file")
     except (OSError, yaml.YAMLError):
-        return FileValue(problem="wrong_key", key="(unreadable)")
+        return FileValue(problem="unreadable")
     if not isinstance(data, dict) or not data:
         return FileValue(problem="wrong_key", key="(none)")
     names = {node, node.lstrip("/"), "/**", "**"}

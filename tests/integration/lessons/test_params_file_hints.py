@@ -131,6 +131,27 @@ def test_an_integer_for_a_double_in_the_file(lesson: Lesson, files) -> None:  # 
     assert result.hints == [hint]
 
 
+def test_a_params_file_that_is_not_there_or_not_yaml(lesson: Lesson, files, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """rcl cannot open or parse the file: the node logs an error, then rclpy's traceback, and
+    ends. Both doors wait for the end and say so (as a terminal does), with the file's hint."""
+    missing = tmp_path / "nope.yaml"
+    lines = lesson.run("parameter_tests", "param_vel", "--ros-args", "--params-file", str(missing))
+    assert lines.lines[1].startswith("rclpy._rclpy_pybind11.RCLError: failed to initialize rcl")
+    assert lines.lines[1:] == [lines.lines[1], "[ros2run]: Process exited with failure 1"]
+    assert lines.hints == [
+        f"there is no file {missing} (a relative path starts in the folder the node runs in): "
+        f"check its name and folder, for example with `%ls {tmp_path}`."
+    ]
+    malformed = tmp_path / "malformed.yaml"
+    malformed.write_text("/param_vel_node:\n  ros__parameters:\n    velocity: [0.3\n")
+    result = run_line(f"run parameter_tests param_vel --ros-args --params-file {malformed}")
+    assert result.output.exit_code == 1 and not lesson.session.children  # it ended, gone
+    text = result.output.text
+    assert text.startswith("[ERROR] ") and "Failed to parse global arguments\n" in text
+    assert "Error parsing a event near line 3" in text.splitlines()[-1]  # rclpy's last line
+    assert result.hints[0].startswith(f"{malformed} is not a params file ROS can read (rcl")
+
+
 def test_lesson_launch_with_an_undeclared_parameter(lesson: Lesson, files) -> None:  # type: ignore[no-untyped-def]
     run = lesson.launch(
         "parameter_tests", "test_parameters_file.launch.py", f"params_file:={files['misspelt']}"

@@ -102,6 +102,9 @@ def test_startup_right_answer_passes() -> None:
         (StartupAttempt(True, "f.yaml", "integer", "1"), FILE_TASK, "integer"),
         (StartupAttempt(True, "", first=0.0, start=0.0, now=0.12), FILE_TASK, "no_file"),
         (StartupAttempt(True, "f.yaml", "wrong_key", key="/param_vel"), FILE_TASK, "wrong_key"),
+        # the node ended at start-up: rcl could not open, or could not parse, its file
+        (StartupAttempt(True, "f.yaml", "missing_file"), FILE_TASK, "missing_file"),
+        (StartupAttempt(True, "f.yaml", "unreadable"), FILE_TASK, "unreadable"),
         # the file said 0.0, the value came with `param set` after the start
         (StartupAttempt(True, "f.yaml", first=0.0, start=0.0, now=0.12), FILE_TASK,
          "after_window"),
@@ -148,6 +151,9 @@ def test_the_params_file_is_read_as_rcl_reads_it(tmp_path: Path) -> None:
     path.write_text("/**:\n  ros__parameters:\n    velocity: 1\n")
     found = params_file_value(path, NODE)
     assert found.problem == "integer" and found.written == "1"
+    path.write_text("/param_vel_node:\n  ros__parameters:\n    velocity: [0.3\n")
+    assert params_file_value(path, NODE).problem == "unreadable"  # rcl fails at line 3 too
+    assert params_file_value(tmp_path / "nope.yaml", NODE).problem == "missing_file"
     argv = ["/x/param_vel", "--ros-args", "--params-file", "my_files/p.yaml"]
     assert params_file_of(argv, tmp_path) == tmp_path / "my_files/p.yaml"
     assert params_file_of(["/x/param_vel"], tmp_path) is None
