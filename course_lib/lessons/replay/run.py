@@ -76,7 +76,7 @@ class ReplayLink:
     def _repr_html_(self) -> str:
         return (
             "<p>Replay of this run, saved (opens without a kernel): "
-            f'<a href="{html.escape(self.url)}" target="_blank" rel="noopener">'
+            f'<a href="{html.escape(self.url)}" target="_blank">'
             f"{html.escape(self.href)}</a></p>"
         )
 

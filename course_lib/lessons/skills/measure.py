@@ -65,14 +65,15 @@ def _steady(world: Any, *, still_wait_s: float = 1.0) -> Any:
         steady = abs(reading.linear_mps - previous.linear_mps) < _SPEED_TOLERANCE
         moving = abs(reading.linear_mps) >= _SPEED_TOLERANCE
         waited = reading.time_s - first.time_s
-        if (steady and (moving or waited >= still_wait_s)) or waited >= 5.0:
+        if (steady and (moving or waited >= still_wait_s)) or waited >= max(5.0, still_wait_s):
             return reading
         previous = reading
 
 
-def steady_odom(world: Any) -> Any:
-    """Return the first /odom reading after the robot's speed stopped changing."""
-    return _steady(world)
+def steady_odom(world: Any, *, still_wait_s: float = 1.0) -> Any:
+    """Return the first /odom reading after the robot's speed stopped changing (a robot
+    standing still gets `still_wait_s` of simulated time to start moving)."""
+    return _steady(world, still_wait_s=still_wait_s)
 
 
 class OdomTrace:
