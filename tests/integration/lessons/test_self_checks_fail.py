@@ -265,6 +265,21 @@ def test_lesson10_fails_when_nothing_was_launched() -> None:
     assert "the Python launch file started param_vel_node with velocity 0.2" in _failed(lesson)
 
 
+def test_lesson10_judges_its_own_launches_not_another_lessons_node(stop_nodes) -> None:
+    """Lessons left running: once lesson 10's launch is stopped, a param_vel_node that another
+    lesson starts afterwards is not lesson 10's (the check named it as left over before)."""
+    STOPPED = "every launch was stopped (no param_vel_node left)"
+    lesson = start(10)
+    run = lesson.launch("parameter_tests", "test_parameters.launch.py")
+    assert STOPPED in _failed(lesson)  # its launch still runs
+    run.stop()
+    assert not _failed(lesson)
+    nine = Lesson(9, lesson.session, load_course_settings())  # another notebook's lesson
+    nine.run("parameter_tests", "param_vel")
+    checks = lesson.self_check().checks
+    assert checks[1].passed and checks[1].what.startswith(f"{STOPPED} (the one running now")
+
+
 def test_a_lesson_listens_to_parameter_events_from_its_first_cell() -> None:
     """Lesson 7's plot marks the change made right after it is made: the session subscribed
     when the lesson started, so the node's publisher has long matched it (events are volatile;
