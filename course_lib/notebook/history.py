@@ -226,16 +226,17 @@ def _latest_start(records: list[dict[str, Any]], node: str) -> int | None:
 
 
 def _events(records: list[dict[str, Any]], node: str) -> list[dict[str, Any]]:
-    """Return the node's event records once each (several kernels record the same event)."""
-    seen: set[float] = set()
-    out = []
+    """Return the node's event records once each: several listeners (the lab's kernels, its
+    `ros2` daemon) record the same event; a record that knows the simulated time is kept."""
+    kept: dict[float, dict[str, Any]] = {}
     for record in records:
         if record.get("t") == "event" and record.get("node") == node:
             stamp = float(record.get("stamp") or 0.0)
-            if stamp not in seen:
-                seen.add(stamp)
-                out.append(record)
-    return out
+            if stamp not in kept or (
+                kept[stamp].get("sim") is None and record.get("sim") is not None
+            ):
+                kept[stamp] = record
+    return list(kept.values())
 
 
 class _Builder:

@@ -13,6 +13,7 @@ __all__ = [
     "TYPE_NAMES",
     "VALUE_FIELDS",
     "ParamValue",
+    "event_record",
     "from_journal",
     "journal_value",
     "parse_value",
@@ -162,3 +163,22 @@ def from_journal(stored: Any) -> ParamValue | None:
     if kind == BYTE_ARRAY:
         return ParamValue(kind, tuple(bytes([b]) for b in raw))
     return ParamValue(kind, tuple(raw) if kind in ARRAY_TYPES else raw)
+
+
+def event_record(msg: Any, sim: float | None = None) -> dict[str, Any] | None:
+    """Return the parameter journal's record of a /parameter_events message (`sim`: the
+    simulated time it was heard at, if known), or None for the course's and ros2cli's own
+    hidden nodes."""
+    if msg.node.startswith("/_"):
+        return None
+    changes = [
+        {"kind": kind, "name": p.name, "value": journal_value(value_from_msg(p.value))}
+        for kind, params in (
+            ("new", msg.new_parameters),
+            ("changed", msg.changed_parameters),
+            ("deleted", msg.deleted_parameters),
+        )
+        for p in params
+    ]
+    stamp = msg.stamp.sec + msg.stamp.nanosec * 1e-9
+    return {"t": "event", "node": msg.node, "stamp": stamp, "sim": sim, "changes": changes}

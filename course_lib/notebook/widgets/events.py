@@ -81,22 +81,11 @@ class ParameterEventsFeed:
     def _journal(self, msg: Any) -> None:
         """Write the event to the lab's parameter journal (lesson.history reads it)."""
         from ...core import param_journal
-        from ...ros2.values import journal_value, value_from_msg
+        from ...ros2.values import event_record
 
-        if msg.node.startswith("/_"):  # the course's and ros2cli's own hidden nodes
-            return
-        changes = [
-            {"kind": kind, "name": p.name, "value": journal_value(value_from_msg(p.value))}
-            for kind, params in (
-                ("new", msg.new_parameters),
-                ("changed", msg.changed_parameters),
-                ("deleted", msg.deleted_parameters),
-            )
-            for p in params
-        ]
-        stamp = msg.stamp.sec + msg.stamp.nanosec * 1e-9
-        record = {"t": "event", "node": msg.node, "stamp": stamp, "sim": _sim_now(self._session)}
-        param_journal.append(self._session.domain_id, {**record, "changes": changes})
+        record = event_record(msg, _sim_now(self._session))
+        if record is not None:
+            param_journal.append(self._session.domain_id, record)
 
     def listen(self, callback: Callable[[Any], None]) -> Callable[[], None]:
         """Call `callback` with every ParameterEvent from now on; return what stops it."""

@@ -24,6 +24,7 @@ from typing import Any
 
 from ...core.param_journal import acting_door
 from ...processes.children import OWNER_ENV, ChildProcess, owner_alive, spawn
+from ...processes.ownership import LAB_ENV
 from ..node.connect import IDLE_ENV, SHUTDOWN, daemon_argv, daemon_lock, daemon_socket
 from ..verbs.console import StreamingConsole
 from .commands import Context, execute
@@ -215,6 +216,26 @@ def _serve_forever(
             os.close(watch)
 
 
+def _journal_parameter_events(node: Any, domain: int) -> Any:
+    """Journal every /parameter_events message of a lab's domain, as its kernels do: a change
+    made while no kernel of the lab listens (a node's own, a terminal's) is traced too, and
+    `lesson.history` counts an event that several listeners journaled once."""
+    from rcl_interfaces.msg import ParameterEvent
+    from rclpy.qos import qos_profile_parameter_events
+
+    from ...core import param_journal
+    from ..values import event_record
+
+    def journal(msg: Any) -> None:
+        record = event_record(msg)
+        if record is not None:
+            param_journal.append(domain, record)
+
+    return node.create_subscription(
+        ParameterEvent, "/parameter_events", journal, qos_profile_parameter_events
+    )
+
+
 def serve(*, idle_s: float | None = None) -> int:
     """Serve commands for this process's ROS_DOMAIN_ID until stopped, orphaned or idle."""
     from ..node.direct import DirectNode, daemon_node_name
@@ -235,6 +256,8 @@ def serve(*, idle_s: float | None = None) -> int:
         os.unlink(path)
         raise
     try:
+        if os.environ.get(LAB_ENV) == "1":
+            _journal_parameter_events(direct.node, domain)
         owner = os.environ.get(OWNER_ENV)
         _serve_forever(server, direct.client(), idle_s=idle_s, owner=owner, stop=stop)
     finally:

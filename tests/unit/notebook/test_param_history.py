@@ -55,6 +55,13 @@ def test_an_event_takes_the_door_of_the_request_it_matches() -> None:
     ]
 
 
+def test_an_event_heard_twice_keeps_the_simulated_time_of_a_kernel() -> None:
+    daemon = {**_event(110.1, 0.1, 1.0), "sim": None}  # the lab's daemon: no world to read
+    records = [*_start(100.0), daemon, _event(110.2, 0.1, 1.0)]
+    (entry,) = build_history(records, NODE).entries
+    assert entry.sim == 1.5
+
+
 def test_a_request_too_old_for_its_value_is_no_match() -> None:
     records = [*_start(100.0), _set(110.0, 0.1, "%ros2", 0.0, "a"), _event(200.0, 0.1, 1.0)]
     assert [s for _o, _n, s in _summary(records)] == ["%ros2 magic", OTHER]

@@ -1,0 +1,73 @@
+"""A lab's parameter history holds the changes made while no kernel of the lab listened.
+
+The lab's `ros2` daemon journals /parameter_events as the kernels do: a change made by another
+node (or the node itself) while every notebook was closed is in `lesson.history` afterwards.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from collections.abc import Iterator
+
+import pytest
+
+from course_lib.core.param_journal import journal_path, read_journal
+from course_lib.core.waiting import wait_until
+from course_lib.notebook.history import OTHER, build_history
+from course_lib.processes.ownership import LAB_ENV
+from course_lib.ros2.command.daemon import start_daemon
+from course_lib.session.session import Session
+
+pytestmark = [pytest.mark.ros, pytest.mark.slow]
+
+NODE = "/param_vel_node"
+_SETTER = """
+import sys, rclpy
+from rclpy.parameter import Parameter
+from rclpy.parameter_client import AsyncParameterClient
+rclpy.init()
+node = rclpy.create_node("other_setter")
+client = AsyncParameterClient(node, "/param_vel_node")
+assert client.wait_for_services(10.0)
+future = client.set_parameters([Parameter("velocity", value=float(sys.argv[1]))])
+rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
+print(future.result().results[0].successful)
+"""
+
+
+@pytest.fixture
+def quiet_lab() -> Iterator[Session]:
+    """A lab's domain whose daemon runs and where no kernel listens to /parameter_events."""
+    session = Session()  # its node never subscribes to /parameter_events (no lesson starts)
+    journal_path(session.domain_id).unlink(missing_ok=True)
+    daemon = start_daemon({**session.env, LAB_ENV: "1"})
+    try:
+        yield session
+    finally:
+        daemon.stop()
+        session.close()
+        journal_path(session.domain_id).unlink(missing_ok=True)
+
+
+def test_a_change_while_no_kernel_listens_is_in_the_history(quiet_lab: Session) -> None:
+    node = quiet_lab.node
+    assert wait_until(lambda: node.count_subscribers("/parameter_events") >= 1, 15.0), (
+        "the lab's daemon does not listen to /parameter_events"
+    )
+    quiet_lab.run("parameter_tests", "param_vel")
+    # the node's declarations go out before anyone matched its publisher (events are
+    # volatile): a change made once the node is known is what the daemon must hear
+    listed = lambda: NODE in {f"/{name}" for name in node.get_node_names()}  # noqa: E731
+    assert wait_until(listed, 15.0), "the node never joined the graph"
+    setter = subprocess.run(
+        [sys.executable, "-c", _SETTER, "0.3"],
+        env=quiet_lab.env, capture_output=True, text=True, timeout=60, check=False,
+    )  # fmt: skip
+    assert setter.stdout.strip() == "True", setter.stderr
+
+    def entries() -> list:
+        return list(build_history(read_journal(quiet_lab.domain_id), NODE).entries)
+
+    assert wait_until(entries, 10.0), "the change is not in the history"
+    assert [(e.new.value, e.source) for e in entries()] == [(0.3, OTHER)]
