@@ -9,7 +9,8 @@ skips. It outlives kernels; `lesson.history()` reads it. Pure file code: no ROS.
 Records (`"t"`): `set` (a course door is about to set a parameter: door, node, name, value,
 old), `failed` (that set was refused), `event` (a /parameter_events message a kernel saw),
 `start` (the course started a node: its `--ros-args`, from where), `named` (a started
-process's node name, learnt from its log).
+process's node name, learnt from its log), `spawned` (a terminal's `ros2 run` started its
+executable as this pid: its log goes to the terminal, so its name is learnt from the graph).
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ __all__ = [
     "current_door",
     "journal_path",
     "read_journal",
+    "record_spawned",
     "record_start",
 ]
 
@@ -131,3 +133,8 @@ def record_start(
             "cwd": cwd or os.getcwd(),
         },
     )
+
+
+def record_spawned(domain: int | str | None, executable: str, pid: int) -> None:
+    """Record the pid a terminal's `ros2 run` started `executable` as (after its `start`)."""
+    append(domain, {"t": "spawned", "exe": executable, "pid": pid})

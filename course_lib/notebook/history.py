@@ -22,7 +22,14 @@ from typing import Any
 from ..ros2.paramfile import ParamFileError, read_param_file
 from ..ros2.values import NOT_SET, ParamValue, from_journal, parse_value
 
-__all__ = ["HistoryEntry", "ParameterHistory", "build_history", "format_value", "node_history"]
+__all__ = [
+    "HistoryEntry",
+    "ParameterHistory",
+    "build_history",
+    "format_value",
+    "named_spawns",
+    "node_history",
+]
 
 MATCH_WINDOW_S = 30.0  # a request's event arrives within this (a loaded machine included)
 NAME_WINDOW_S = 60.0  # a started executable's node name is learnt from its log within this
@@ -327,9 +334,32 @@ def build_history(records: list[dict[str, Any]], node: str) -> ParameterHistory:
     return ParameterHistory(node, started, door, tuple(overrides), entries)
 
 
-def node_history(node: str, domain: int | str) -> ParameterHistory:
-    """Return the history of `node` in ROS domain `domain` (read from its journal)."""
+def node_history(node: str, domain: int | str, *, live: bool = True) -> ParameterHistory:
+    """Return the history of `node` in ROS domain `domain` (read from its journal); `live`:
+    a node a terminal's `ros2 run` started is named from the graph (see `named_spawns`)."""
     from ..core.param_journal import read_journal
 
     full = node if node.startswith("/") else "/" + node
-    return build_history(read_journal(domain), full)
+    records = read_journal(domain)
+    return build_history(named_spawns(records, full) if live else records, full)
+
+
+def named_spawns(records: list[dict[str, Any]], node: str) -> list[dict[str, Any]]:
+    """Return `records` with a `named` record after each `spawned` one whose process holds
+    `node` now (its /parameter_events publisher): a terminal's `ros2 run` prints the node's
+    log to the terminal, so the graph says which node the process started."""
+    spawned = [r for r in records if r.get("t") == "spawned"]
+    if not spawned:
+        return records
+    from ..lab.drivers import publishers
+    from ..ros2.api.nodes_and_params import client
+
+    holders = [p for p in publishers(client(), "/parameter_events") if p.node == node]
+    holding = {id(r) for r in spawned if any(p.runs_in(int(r.get("pid") or 0)) for p in holders)}
+    out: list[dict[str, Any]] = []
+    for record in records:
+        out.append(record)
+        if id(record) in holding:
+            out.append({"t": "named", "wall": record.get("wall"), "exe": record.get("exe"),
+                        "node": node})  # fmt: skip
+    return out

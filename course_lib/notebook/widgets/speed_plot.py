@@ -71,7 +71,7 @@ class SpeedPlot:
         from ..history import node_history
 
         stamp = msg.stamp.sec + msg.stamp.nanosec * 1e-9
-        entries = node_history(self.node, self.session.domain_id).entries
+        entries = node_history(self.node, self.session.domain_id, live=False).entries
         found = [e.number for e in entries if e.stamp == stamp and e.name == "velocity"]
         return f"#{found[-1]} " if found else ""
 

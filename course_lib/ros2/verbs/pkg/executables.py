@@ -115,6 +115,7 @@ def run(args: argparse.Namespace, ctx: Context) -> Any:
     child = spawn(
         cmd, name=args.executable_name, env=env, cwd=ctx.cwd, new_session=False, capture=False
     )
+    param_journal.record_spawned(env.get("ROS_DOMAIN_ID"), args.executable_name, child.pid)
     code: int | None = None
     while code is None:
         try:
