@@ -37,6 +37,7 @@ __all__ = [
 
 PARAM_VEL = "/param_vel_node"
 DESCRIPTOR_VEL = "/descriptor_vel_node"
+_START_WAIT_S = 10.0  # after the checker sets velocity, at most, until the robot moves
 
 
 def _set(node: str, name: str, value: float) -> None:
@@ -389,7 +390,10 @@ class SavedPanelExercise(_StartupExercise):
         if not api.param_set(self.node, "velocity", v).successful:
             return 0.0, now, "the node refused the checker's velocity"
         limit = max(self.target * 2, self.target + 3.0)
-        moving = world.wait_for_odom(lambda r: abs(r.linear_mps) > 0.01, 10.0)
+        try:
+            moving = world.wait_for_odom(lambda r: abs(r.linear_mps) > 0.01, _START_WAIT_S)
+        except TimeoutError:  # a verdict, not a traceback: the learner's node drove nothing
+            return 0.0, now, f"the robot did not move within {_START_WAIT_S:g} s of velocity {v:g}"
         with contextlib.suppress(TimeoutError):
             world.wait_for_odom(
                 lambda r: abs(r.linear_mps) < 0.003 or r.time_s > moving.time_s + limit, 60.0

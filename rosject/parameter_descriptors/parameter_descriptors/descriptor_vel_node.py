@@ -45,6 +45,7 @@ class DescriptorVel(Node):
         self.publisher = self.create_publisher(Twist, 'cmd_vel', 10)
         self.msg = Twist()
         self.trip_start = None
+        self.trip_pending = False
         self.timer = self.create_timer(0.1, self.timer_callback)
         self.get_logger().info(
             'Ready: velocity 0.0 m/s, trips up to %.1f m' % self.get_parameter('max_travel').value
@@ -66,16 +67,20 @@ class DescriptorVel(Node):
         return SetParametersResult(successful=True)
 
     def parameters_set(self, params):
-        """Start a new trip whenever velocity is set."""
+        """Start a new trip whenever velocity is set (from the next tick: on simulated time
+        the clock may not have started yet, and a trip timed from 0 would end at once)."""
         for param in params:
             if param.name == 'velocity':
                 self.get_logger().info('Velocity parameter is: %f' % param.value)
-                self.trip_start = self.get_clock().now() if param.value > 0.0 else None
+                self.trip_start = None
+                self.trip_pending = param.value > 0.0
 
     def timer_callback(self):
         """Publish the velocity; end the trip once travel_time has passed."""
         velocity = self.get_parameter('velocity').value
         travel_time = self.get_parameter('travel_time').value
+        if self.trip_pending:  # the trip starts with the first message that drives it
+            self.trip_start, self.trip_pending = self.get_clock().now(), False
         if self.trip_start is not None and travel_time > 0.0:
             driven = (self.get_clock().now() - self.trip_start).nanoseconds * 1e-9
             if driven >= travel_time:

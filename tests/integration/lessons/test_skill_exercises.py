@@ -174,3 +174,11 @@ def test_lesson11_saved_panel(world_lesson: Lesson, stop_nodes: None) -> None:
     kept = saved.check()
     assert lost.kind == "no_file", lost
     assert kept.passed, kept.message
+    lesson.stop("descriptor_vel")
+    lesson.run(*node, "--params-file", str(path), "-r", "cmd_vel:=/nowhere")  # drives nothing
+    still = saved.check()  # a verdict, not a TimeoutError's traceback
+    assert not still.passed and "the robot did not move within 10 s" in still.message, still
+    lesson.stop("descriptor_vel")
+    lesson.run(*node, "--params-file", str(path.with_name("nope.yaml")))
+    missing = saved.check()  # the node ended at start-up: the file is named
+    assert missing.kind == "missing_file" and "there is no file" in missing.message, missing
