@@ -147,6 +147,7 @@ def main() -> int:
           f"({'available' if problem is None else problem})")  # fmt: skip
     learners = [f"r2pb-{i}" for i in range(1, args.learners + 1)]
     with tempfile.TemporaryDirectory(prefix="bench-hub-wall-") as tmp:
+        Path(tmp).chmod(0o711)  # the progress service's own account enters its state folder
         try:
             for wall in (False, True):
                 for name in (*learners, ADMIN):  # each hub creates its accounts afresh
