@@ -124,7 +124,7 @@ def _run_both(
 ) -> list[dict]:
     """Start both users' sessions at once; return what each leased and saw."""
     python = _system_python()
-    probe = lease_domain()  # a free domain now: both users start their search there
+    probe = lease_domain({})  # a free domain now: both users start their search there
     start = probe.domain_id
     probe.release()
     learners = [
@@ -174,15 +174,20 @@ def test_two_users_get_different_domains_and_never_meet(users) -> None:
 def test_control_users_in_one_domain_do_see_each_other(users) -> None:
     # The check above can see another user's node: in one domain, with discovery over UDP
     # (the shared-memory transport does not cross users), the two users' nodes meet.
-    probe = lease_domain()
-    shared = str(probe.domain_id)
-    probe.release()
+    # leased, never read from os.environ: this worker's own session exports its domain there
+    # (a full run saw its `_course_client_<pid>` node here, three times of three); held for
+    # the whole test, so no session leases it meanwhile
+    lease = lease_domain({})
+    shared = str(lease.domain_id)
     extra = {
         "ROS_DOMAIN_ID": shared,
         "ROS_AUTOMATIC_DISCOVERY_RANGE": "SUBNET",
         "FASTDDS_BUILTIN_TRANSPORTS": "UDPv4",
     }
-    first, second = _run_both(users, PLAIN, extra)
+    try:
+        first, second = _run_both(users, PLAIN, extra)
+    finally:
+        lease.release()
     (a, _, _), (b, _, _) = users
     assert first["domain"] == second["domain"] == int(shared)
     assert first["seen"] == second["seen"] == sorted([f"node_of_{a}", f"node_of_{b}"])
