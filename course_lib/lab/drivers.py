@@ -28,6 +28,9 @@ _SEEN_WAIT_S = 1.0  # at most, until a publisher started moments ago is discover
 # At most, until a new node's /rosout publisher is discovered (LOCALHOST discovery takes up to
 # ~3 s on a busy host); the wait ends as soon as it is, so a quiet host waits ~0.1 s.
 _NEW_NODE_WAIT_S = 5.0
+# At most, until the endpoints of a process that has just ended leave the graph (a little past
+# the discovery lease of course_lib/dds/fastdds_profile.xml)
+_GONE_WAIT_S = 3.5
 _POLL_S = 0.02
 _DAEMON = "course_lib.ros2.command.daemon"
 
@@ -108,9 +111,25 @@ def describe(publisher: Publisher) -> str:
 
 
 def other_drivers(client: Any, own: int | None) -> list[Publisher]:
-    """Return the publishers of /cmd_vel outside process `own`'s tree (all if `own` is None)."""
+    """Return the publishers of /cmd_vel outside process `own`'s tree (all if `own` is None).
+
+    A publisher no live process of this user holds may be one that has just ended (its
+    endpoints stay in the graph until its discovery lease runs out): it is given that long to
+    leave before it counts (another account's publisher stays, and counts).
+    """
+    from ..core.waiting import wait_until
+
     client.wait_all_seen(timeout=_SEEN_WAIT_S)  # a publisher started moments ago counts too
-    return [p for p in publishers(client) if own is None or not p.runs_in(own)]
+
+    def others() -> list[Publisher]:
+        return [p for p in publishers(client) if own is None or not p.runs_in(own)]
+
+    def settled() -> tuple[list[Publisher]] | None:
+        found = others()
+        return (found,) if all(p.pids for p in found) else None
+
+    done = wait_until(settled, _GONE_WAIT_S, interval=0.1)
+    return done[0] if done is not None else others()
 
 
 def one_driver(
