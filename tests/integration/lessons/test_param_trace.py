@@ -16,6 +16,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from param_setter import another_node_sets_velocity
 
 from course_lib.config.course import load_course_settings
 from course_lib.core.param_journal import journal_path
@@ -56,31 +57,9 @@ def _terminal(session: Session, command: str) -> str:
     return proc.stdout + proc.stderr
 
 
-_OTHER_NODE = """
-import sys, rclpy
-from rclpy.parameter import Parameter
-from rclpy.parameter_client import AsyncParameterClient
-rclpy.init()
-node = rclpy.create_node("other_setter")
-client = AsyncParameterClient(node, "/param_vel_node")
-assert client.wait_for_services(10.0)
-future = client.set_parameters([Parameter("velocity", value=float(sys.argv[1]))])
-rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
-print(future.result().results[0].successful)
-"""
-
-
 def _other_node_sets(session: Session, value: float) -> None:
     """Set velocity from another node: plain rclpy, no door of the course."""
-    proc = subprocess.run(
-        [sys.executable, "-c", _OTHER_NODE, str(value)],
-        env=session.env,
-        capture_output=True,
-        text=True,
-        timeout=60,
-        check=False,
-    )
-    assert proc.stdout.strip() == "True", proc.stderr
+    another_node_sets_velocity(session.env, value)
 
 
 def _start_node(*args: str) -> None:

@@ -16,6 +16,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from param_setter import another_node_sets_velocity
 
 from course_lib.core.param_journal import journal_path, read_journal
 from course_lib.core.paths import REPO_ROOT
@@ -28,18 +29,6 @@ from course_lib.session.session import Session, get_session
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 NODE = "/param_vel_node"
-_SETTER = """
-import sys, rclpy
-from rclpy.parameter import Parameter
-from rclpy.parameter_client import AsyncParameterClient
-rclpy.init()
-node = rclpy.create_node("other_setter")
-client = AsyncParameterClient(node, "/param_vel_node")
-assert client.wait_for_services(10.0)
-future = client.set_parameters([Parameter("velocity", value=float(sys.argv[1]))])
-rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
-print(future.result().results[0].successful)
-"""
 
 
 @pytest.fixture
@@ -66,11 +55,7 @@ def test_a_change_while_no_kernel_listens_is_in_the_history(quiet_lab: Session) 
     # volatile): a change made once the node is known is what the daemon must hear
     listed = lambda: NODE in {f"/{name}" for name in node.get_node_names()}  # noqa: E731
     assert wait_until(listed, 15.0), "the node never joined the graph"
-    setter = subprocess.run(
-        [sys.executable, "-c", _SETTER, "0.3"],
-        env=quiet_lab.env, capture_output=True, text=True, timeout=60, check=False,
-    )  # fmt: skip
-    assert setter.stdout.strip() == "True", setter.stderr
+    another_node_sets_velocity(quiet_lab.env, 0.3)
 
     def entries() -> list:
         return list(build_history(read_journal(quiet_lab.domain_id), NODE).entries)
