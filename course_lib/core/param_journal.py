@@ -8,9 +8,9 @@ skips. It outlives kernels; `lesson.history()` reads it. Pure file code: no ROS.
 
 Records (`"t"`): `set` (a course door is about to set a parameter: door, node, name, value,
 old), `failed` (that set was refused), `event` (a /parameter_events message a kernel saw),
-`start` (the course started a node: its `--ros-args`, from where), `named` (a started
-process's node name, learnt from its log), `spawned` (a terminal's `ros2 run` started its
-executable as this pid: its log goes to the terminal, so its name is learnt from the graph).
+`start` (the course started a node: its `--ros-args`, from where; a terminal's `ros2 run` also
+the pid, as its log goes to the terminal and the node's name is learnt from the graph),
+`named` (a started process's node name, learnt from its log).
 """
 
 from __future__ import annotations
@@ -34,7 +34,6 @@ __all__ = [
     "current_door",
     "journal_path",
     "read_journal",
-    "record_spawned",
     "record_start",
 ]
 
@@ -119,22 +118,21 @@ def read_journal(domain: int | str) -> list[dict[str, Any]]:
 
 
 def record_start(
-    domain: int | str | None, executable: str, argv: list[str], *, cwd: str | None
+    domain: int | str | None,
+    executable: str,
+    argv: list[str],
+    *,
+    cwd: str | None,
+    pid: int | None = None,
 ) -> None:
-    """Record that a course door starts `executable` with `argv` (its `--ros-args` matter)."""
+    """Record that a course door starts `executable` with `argv` (its `--ros-args` matter),
+    as process `pid` when the door knows it and learns no node name from the log."""
     ros_args = argv[argv.index("--ros-args") + 1 :] if "--ros-args" in argv else []
-    append(
-        domain,
-        {
-            "t": "start",
-            "door": current_door(),
-            "exe": executable,
-            "args": ros_args,
-            "cwd": cwd or os.getcwd(),
-        },
-    )
-
-
-def record_spawned(domain: int | str | None, executable: str, pid: int) -> None:
-    """Record the pid a terminal's `ros2 run` started `executable` as (after its `start`)."""
-    append(domain, {"t": "spawned", "exe": executable, "pid": pid})
+    record = {
+        "t": "start",
+        "door": current_door(),
+        "exe": executable,
+        "args": ros_args,
+        "cwd": cwd or os.getcwd(),
+    }
+    append(domain, record if pid is None else {**record, "pid": pid})

@@ -20,7 +20,15 @@ from typing import Any
 
 import psutil
 
-__all__ = ["CMD_VEL", "Publisher", "describe", "one_driver", "other_drivers", "pid_bits"]
+__all__ = [
+    "CMD_VEL",
+    "GONE_WAIT_S",
+    "Publisher",
+    "describe",
+    "one_driver",
+    "other_drivers",
+    "pid_bits",
+]
 
 CMD_VEL = "/cmd_vel"
 _EPROSIMA = (0x01, 0x0F)
@@ -28,9 +36,9 @@ _SEEN_WAIT_S = 1.0  # at most, until a publisher started moments ago is discover
 # At most, until a new node's /rosout publisher is discovered (LOCALHOST discovery takes up to
 # ~3 s on a busy host); the wait ends as soon as it is, so a quiet host waits ~0.1 s.
 _NEW_NODE_WAIT_S = 5.0
-# At most, until the endpoints of a process that has just ended leave the graph (a little past
-# the discovery lease of course_lib/dds/fastdds_profile.xml)
-_GONE_WAIT_S = 3.5
+# At most, until what a process that has just ended left in the graph (its endpoints, its
+# node's name) is gone: a little past the discovery lease of course_lib/dds/fastdds_profile.xml
+GONE_WAIT_S = 3.5
 _POLL_S = 0.02
 _DAEMON = "course_lib.ros2.command.daemon"
 
@@ -128,7 +136,7 @@ def other_drivers(client: Any, own: int | None) -> list[Publisher]:
         found = others()
         return (found,) if all(p.pids for p in found) else None
 
-    done = wait_until(settled, _GONE_WAIT_S, interval=0.1)
+    done = wait_until(settled, GONE_WAIT_S, interval=0.1)
     return done[0] if done is not None else others()
 
 

@@ -15,7 +15,6 @@ __all__ = ["installed_checks", "run_checks"]
 # Lesson 8's dump: the learner's own file (the package's params file is never rewritten).
 DUMP_NAME = "dump/param_vel_node.yaml"
 NODE_11 = "descriptor_vel_node"
-_GHOST_WAIT_S = 3.5  # a little past the discovery lease (course_lib/dds/fastdds_profile.xml)
 
 
 def _nodes() -> list[str]:
@@ -87,6 +86,7 @@ def _namesakes(node: str) -> tuple[bool, list[str]]:
     wait (bounded by the discovery lease) until it leaves or a live process is seen holding it.
     """
     from ..core.waiting import wait_until
+    from ..lab import drivers
     from ..lab.drivers import describe, publishers
     from ..ros2.api.nodes_and_params import client
 
@@ -95,7 +95,7 @@ def _namesakes(node: str) -> tuple[bool, list[str]]:
         holders = [p for p in publishers(client()) if p.node == node and p.pids]
         return (listed, [describe(p) for p in holders]) if not listed or holders else None
 
-    found = wait_until(settled, _GHOST_WAIT_S, interval=0.1)
+    found = wait_until(settled, drivers.GONE_WAIT_S, interval=0.1)
     if found is not None:
         return found
     # Still listed, driving nothing: a ghost is not a running node. Every ROS node publishes its

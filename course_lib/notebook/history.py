@@ -27,7 +27,7 @@ __all__ = [
     "ParameterHistory",
     "build_history",
     "format_value",
-    "named_spawns",
+    "named_starts",
     "node_history",
 ]
 
@@ -336,26 +336,26 @@ def build_history(records: list[dict[str, Any]], node: str) -> ParameterHistory:
 
 def node_history(node: str, domain: int | str, *, live: bool = True) -> ParameterHistory:
     """Return the history of `node` in ROS domain `domain` (read from its journal); `live`:
-    a node a terminal's `ros2 run` started is named from the graph (see `named_spawns`)."""
+    a node a terminal's `ros2 run` started is named from the graph (see `named_starts`)."""
     from ..core.param_journal import read_journal
 
     full = node if node.startswith("/") else "/" + node
     records = read_journal(domain)
-    return build_history(named_spawns(records, full) if live else records, full)
+    return build_history(named_starts(records, full) if live else records, full)
 
 
-def named_spawns(records: list[dict[str, Any]], node: str) -> list[dict[str, Any]]:
-    """Return `records` with a `named` record after each `spawned` one whose process holds
-    `node` now (its /parameter_events publisher): a terminal's `ros2 run` prints the node's
-    log to the terminal, so the graph says which node the process started."""
-    spawned = [r for r in records if r.get("t") == "spawned"]
-    if not spawned:
+def named_starts(records: list[dict[str, Any]], node: str) -> list[dict[str, Any]]:
+    """Return `records` with a `named` record after each start with a pid (a terminal's
+    `ros2 run`, whose log goes to the terminal) whose process holds `node` now (its
+    /parameter_events publisher): the graph says which node that process started."""
+    by_pid = [r for r in records if r.get("t") == "start" and r.get("pid")]
+    if not by_pid:
         return records
     from ..lab.drivers import publishers
     from ..ros2.api.nodes_and_params import client
 
     holders = [p for p in publishers(client(), "/parameter_events") if p.node == node]
-    holding = {id(r) for r in spawned if any(p.runs_in(int(r.get("pid") or 0)) for p in holders)}
+    holding = {id(r) for r in by_pid if any(p.runs_in(int(r["pid"])) for p in holders)}
     out: list[dict[str, Any]] = []
     for record in records:
         out.append(record)

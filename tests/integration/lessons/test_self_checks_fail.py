@@ -125,6 +125,7 @@ def test_lesson2_passes_when_only_a_ghost_of_its_node_is_listed(
 ) -> None:
     """A node killed without leaving the graph stays listed until its discovery lease runs out
     (longer on a busy host than the check waits): no live process holds it, so it is gone."""
+    from course_lib.lab import drivers
     from course_lib.lessons import checks
 
     lesson = start(2)
@@ -132,7 +133,7 @@ def test_lesson2_passes_when_only_a_ghost_of_its_node_is_listed(
     node = lesson.node("param_vel")
     os.kill(node.pid, signal.SIGKILL)  # no goodbye on the graph: a ghost for the lease
     node.wait(10)
-    monkeypatch.setattr(checks, "_GHOST_WAIT_S", 0.0)  # as if the lease outlived the wait
+    monkeypatch.setattr(drivers, "GONE_WAIT_S", 0.0)  # as if the lease outlived the wait
     assert "/param_vel_node" in api.node_list(), "no ghost to test (the lease ran out)"
     assert checks._namesakes("/param_vel_node") == (False, [])
     assert lesson.self_check().checks[1].passed, lesson.self_check().text()

@@ -177,9 +177,9 @@ def test_a_file_value_of_the_wrong_type_is_named() -> None:
     assert hints.crash_hint([line], []) is None
 
 
-def test_a_params_file_rcl_cannot_parse_or_open_is_named() -> None:
+def test_a_params_file_rcl_cannot_parse_or_open_is_named(tmp_path: Path) -> None:
     crash = CASES["node_params_file_malformed"]["stderr"].splitlines()  # real Jazzy words
-    text = hints.crash_hint(crash, ["params/vel_malformed.yaml"], cwd="/home/me/notebooks")
+    text = hints.crash_hint(crash, ["params/vel_malformed.yaml"], cwd=str(tmp_path))
     assert text is not None and text.startswith(
         "params/vel_malformed.yaml is not a params file ROS can read (rcl stopped reading it "
         "at line 3)"
@@ -189,9 +189,9 @@ def test_a_params_file_rcl_cannot_parse_or_open_is_named() -> None:
         "file: '--params-file my_files/panel.yaml'. Error: Error opening YAML file, at "
         "/project/src/parser.c:271, at /project/src/rcl/arguments.c:415"
     )
-    text = hints.crash_hint([missing], ["my_files/panel.yaml"], cwd="/home/me/notebooks")
+    text = hints.crash_hint([missing], ["my_files/panel.yaml"], cwd=str(tmp_path))
     assert text == (
-        "there is no file my_files/panel.yaml in /home/me/notebooks (a relative path starts in "
+        f"there is no file my_files/panel.yaml in {tmp_path} (a relative path starts in "
         "the folder the node runs in): check its name and folder, for example with "
         "`%ls my_files`."
     )

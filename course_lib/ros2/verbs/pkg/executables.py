@@ -104,18 +104,18 @@ def run(args: argparse.Namespace, ctx: Context) -> Any:
     cmd = [str(found), *args.argv]
     if args.prefix is not None:
         cmd = shlex.split(args.prefix) + cmd
-    param_journal.record_start(
-        env.get("ROS_DOMAIN_ID"), args.executable_name, list(args.argv), cwd=ctx.cwd
-    )
+    domain, argv = env.get("ROS_DOMAIN_ID"), list(args.argv)
     starter = getattr(ctx, "background_run", None)
-    if starter is not None:
+    if starter is not None:  # a notebook's: the node's name is learnt from its log
+        param_journal.record_start(domain, args.executable_name, argv, cwd=ctx.cwd)
         return starter(cmd, args.executable_name, ctx)
     from ....processes.children import spawn
 
     child = spawn(
         cmd, name=args.executable_name, env=env, cwd=ctx.cwd, new_session=False, capture=False
     )
-    param_journal.record_spawned(env.get("ROS_DOMAIN_ID"), args.executable_name, child.pid)
+    # a terminal's: the log goes to the terminal; the history names the node by this pid
+    param_journal.record_start(domain, args.executable_name, argv, cwd=ctx.cwd, pid=child.pid)
     code: int | None = None
     while code is None:
         try:
