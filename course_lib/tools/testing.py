@@ -17,7 +17,6 @@ __all__ = ["TEST_ENV", "independent_env", "with_course_interfaces", "with_course
 TEST_ENV = {
     "RCUTILS_COLORIZED_OUTPUT": "0",
     "PYTHONHASHSEED": "0",
-    "MPLBACKEND": "Agg",
     "IPYKERNEL_CELL_NAME": "<IPY-INPUT>",
     "PYDEVD_DISABLE_FILE_VALIDATION": "1",
 }

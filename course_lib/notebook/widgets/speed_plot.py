@@ -1,5 +1,8 @@
 """Lesson 7's plot: the robot's /odom speed over simulated time, each `velocity` change of the
-lesson's node marked (another node's changes are not this plot's story)."""
+lesson's node marked (another node's changes are not this plot's story).
+
+The picture is the replay's SVG (`viz.speed_svg`): text the browser draws, a few ms to build,
+so a live plot costs its kernel no plotting library and little CPU."""
 
 from __future__ import annotations
 
@@ -7,12 +10,13 @@ import threading
 from collections import deque
 from typing import Any
 
+from ...viz.speed_svg import speed_svg
 from .events import changes_of, subscribe_parameter_events
-from .plotting import LiveSpeedFigure, speed_png
 
 __all__ = ["REFRESH_S", "SpeedPlot"]
 
 REFRESH_S = 1.0  # the live plot redraws at most this often, and only after new samples
+ODOM_DEPTH = 100  # /odom comes 50 times a second: 2 s of samples wait while the kernel is busy
 _STILL_MPS = 1e-3  # samples of a robot standing still (speed ~0, unchanged) redraw nothing
 
 
@@ -26,17 +30,16 @@ class SpeedPlot:
         self.node = node  # only this node's velocity changes are marked
         self.samples: deque[tuple[float, float]] = deque(maxlen=window)
         self.marks: list[tuple[float, str]] = []
+        self._unplaced: list[str] = []  # changes heard before any sample: placed at the first
         self.time_jumps = 0  # simulated time going back: the world restarted, or two worlds
         self._lock = threading.Lock()
         self._stop = threading.Event()
         self._fresh = threading.Event()  # set by new samples or marks: the picture changed
         self.redraws = 0  # live redraws so far
         self._image: Any = None
-        self._figure: LiveSpeedFigure | None = None  # the live picture's, made by show()
-        self._drawing = threading.Lock()
         self._thread: threading.Thread | None = None
         node = session.node
-        self._odom = node.create_subscription(Odometry, "/odom", self._on_odom, 10)
+        self._odom = node.create_subscription(Odometry, "/odom", self._on_odom, ODOM_DEPTH)
         self._stop_events = subscribe_parameter_events(session, self._on_event)
 
     def _on_odom(self, msg: Any) -> None:
@@ -48,6 +51,8 @@ class SpeedPlot:
                 self.time_jumps += 1
                 self.marks.append((stamp, "simulated time went back"))
             self.samples.append((stamp, speed))
+            self.marks += [(stamp, label) for label in self._unplaced]
+            self._unplaced.clear()
         if last is None or stamp < last[0] or max(abs(speed), abs(speed - last[1])) > _STILL_MPS:
             self._fresh.set()  # a still robot's samples alone do not redraw the plot
 
@@ -60,9 +65,12 @@ class SpeedPlot:
         if not changed:
             return
         number = self._history_number(msg)
+        labels = [f"{number}velocity := {c.value:g}" for c in changed]
         with self._lock:
-            now = self.samples[-1][0] if self.samples else 0.0
-            self.marks += [(now, f"{number}velocity := {c.value:g}") for c in changed]
+            if self.samples:
+                self.marks += [(self.samples[-1][0], label) for label in labels]
+            else:  # no simulated time known yet (the subscription is still being matched)
+                self._unplaced += labels
         self._fresh.set()
 
     def _history_number(self, msg: Any) -> str:
@@ -80,16 +88,10 @@ class SpeedPlot:
         with self._lock:
             return list(self.samples), list(self.marks)
 
-    def png(self) -> bytes:
-        """Return the plot so far as PNG bytes (the live figure's, once shown)."""
-        with self._lock:
-            samples, marks = list(self.samples), list(self.marks)
-        times, speeds = [t for t, _ in samples], [v for _, v in samples]
-        figure = self._figure
-        if figure is not None:
-            with self._drawing:  # one figure: the refresh thread and a cell may both draw
-                return figure.png(times, speeds, marks)
-        return speed_png(times, speeds, marks)
+    def svg(self) -> str:
+        """Return the plot so far as SVG text."""
+        samples, marks = self.snapshot()
+        return speed_svg(samples, marks)
 
     def show(self) -> Any:
         """Display the live plot (redrawn when new samples came, at most once per REFRESH_S,
@@ -97,8 +99,7 @@ class SpeedPlot:
         import ipywidgets as widgets
         from IPython.display import display
 
-        self._figure = self._figure or LiveSpeedFigure()
-        self._image = widgets.Image(value=self.png(), format="png")
+        self._image = widgets.HTML(value=self.svg())
         display(self._image)
         if self._thread is None:
             self._thread = threading.Thread(target=self._refresh, daemon=True, name="speed-plot")
@@ -112,18 +113,17 @@ class SpeedPlot:
             if self._stop.is_set() or self.session.closed:
                 return
             self._fresh.clear()
-            self._image.value = self.png()
+            self._image.value = self.svg()
             self.redraws += 1
             if self._stop.wait(REFRESH_S):
                 return
 
     def still(self) -> Any:
         """Stop the live refresh and return the final plot as a picture."""
-        from IPython.display import Image
+        from IPython.display import SVG
 
         self.close()
-        self._figure = None  # the picture kept in the notebook is speed_png's own
-        return Image(data=self.png(), format="png")
+        return SVG(data=self.svg())
 
     def close(self) -> None:
         """Stop refreshing and listening; idempotent."""

@@ -42,13 +42,13 @@ def _wait(predicate, timeout: float) -> bool:  # type: ignore[no-untyped-def]
 def _count_drawings(plot: SpeedPlot) -> list[int]:
     """Count the plot's drawings (each redraw draws the whole picture once)."""
     count = [0]
-    draw = plot.png
+    draw = plot.svg
 
-    def counted() -> bytes:
+    def counted() -> str:
         count[0] += 1
         return draw()
 
-    plot.png = counted  # type: ignore[method-assign]
+    plot.svg = counted  # type: ignore[method-assign]
     return count
 
 
@@ -88,3 +88,32 @@ def test_the_live_plot_redraws_only_after_new_samples(session: Session) -> None:
     finally:
         plot.close()
         session.node.destroy_publisher(publisher)
+
+
+def test_a_change_heard_before_any_sample_is_marked_at_the_first_one(session: Session) -> None:
+    """A velocity set right after the plot appears, before its /odom subscription got a sample,
+    is marked where the samples start (it was marked at 0 s, outside a run at 500 s: the saved
+    replay lost it)."""
+    from rcl_interfaces.msg import Parameter, ParameterEvent, ParameterType
+
+    plot = SpeedPlot(session)
+    odom = session.node.create_publisher(Odometry, "/odom", 10)
+    events = session.node.create_publisher(ParameterEvent, "/parameter_events", 10)
+    try:
+        assert _wait(lambda: events.get_subscription_count() > 0, 10.0)
+        change = Parameter(name="velocity")
+        change.value.type = ParameterType.PARAMETER_DOUBLE
+        change.value.double_value = 0.2
+        events.publish(ParameterEvent(node="/param_vel_node", changed_parameters=[change]))
+        assert _wait(lambda: plot._unplaced, 5.0), "the change was never heard"
+        assert plot.marks == []
+        assert _wait(lambda: odom.get_subscription_count() > 0, 10.0)
+        odom.publish(_odom(500.0, 0.0))
+        assert _wait(lambda: plot.marks, 5.0)
+        assert [(t, label.split(" ", 1)[-1]) for t, label in plot.marks] == [
+            (500.0, "velocity := 0.2")
+        ]
+    finally:
+        plot.close()
+        session.node.destroy_publisher(odom)
+        session.node.destroy_publisher(events)
