@@ -6,6 +6,7 @@ simulation and the meshcat server are children of the course session, so they en
 
 from __future__ import annotations
 
+import collections
 import contextlib
 import os
 import threading
@@ -17,6 +18,7 @@ from ..config.simulation import SimulationSettings
 from ..core.errors import CourseError
 from ..processes.children import ChildProcess
 from ..sim.world.kinematics import Pose2D, yaw_from_quat
+from ..sim.world.samples import SAMPLES_TOPIC, RobotSample, unpack
 
 __all__ = ["OdomReading", "World"]
 
@@ -26,7 +28,7 @@ _worlds_lock = threading.RLock()
 
 @dataclass(frozen=True)
 class OdomReading:
-    """One /odom message: simulated time, pose, forward speed (m/s) and yaw rate (rad/s)."""
+    """One /odom sample: simulated time, pose, forward speed (m/s) and yaw rate (rad/s)."""
 
     time_s: float
     pose: Pose2D
@@ -34,11 +36,10 @@ class OdomReading:
     angular_radps: float
 
 
-def _reading(msg: Any) -> OdomReading:
-    p, q, t = msg.pose.pose.position, msg.pose.pose.orientation, msg.twist.twist
-    stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+def _reading(sample: RobotSample) -> OdomReading:
+    yaw = yaw_from_quat(sample.qw, sample.qx, sample.qy, sample.qz)
     return OdomReading(
-        stamp, Pose2D(p.x, p.y, yaw_from_quat(q.w, q.x, q.y, q.z)), t.linear.x, t.angular.z
+        sample.time_s, Pose2D(sample.x, sample.y, yaw), sample.linear_mps, sample.angular_radps
     )
 
 
@@ -55,8 +56,7 @@ class World:
         shared: bool = False,
     ) -> None:
         from geometry_msgs.msg import Twist
-        from nav_msgs.msg import Odometry
-        from std_msgs.msg import UInt32
+        from std_msgs.msg import Float64MultiArray, UInt32
 
         from ..sim.ros.topics import RESET_DONE_TOPIC, RESET_TOPIC
 
@@ -66,11 +66,15 @@ class World:
         self.viewer = viewer
         self.shared = shared  # the lab's world, which every notebook of the lab shows
         self._latest: OdomReading | None = None
-        self._odom_msg: Any = None
+        self._recent: collections.deque[tuple[int, OdomReading]] = collections.deque(maxlen=100)
+        self._received = 0  # readings so far: wait_for_odom looks at each new one
         self._cond = threading.Condition()
         self._listeners: list[Any] = []
         node = session.node
-        self._sub = node.create_subscription(Odometry, "/odom", self._on_odom, 10)
+        # /odom's samples, a few to a message (sim.world.samples): a tenth of /odom's wake-ups
+        self._sub = node.create_subscription(
+            Float64MultiArray, SAMPLES_TOPIC, self._on_samples, 10
+        )
         # made on the first drive(): a kernel that only watches never counts as a driver
         self._cmd: Any = None
         self._reset = node.create_publisher(UInt32, RESET_TOPIC, 10)
@@ -84,13 +88,20 @@ class World:
     def __repr__(self) -> str:
         return f"<World {'running' if self.alive else 'stopped'}>"
 
-    def _on_odom(self, msg: Any) -> None:
-        reading = _reading(msg)
+    def _on_samples(self, msg: Any) -> None:
+        readings = [_reading(sample) for sample in unpack(msg.data)]
+        if not readings:
+            return
         with self._cond:
-            self._latest, self._odom_msg = reading, msg
+            for reading in readings:
+                self._received += 1
+                self._recent.append((self._received, reading))
+            self._latest = readings[-1]
             self._cond.notify_all()
-        for listener in list(self._listeners):
-            listener(msg)
+        listeners = list(self._listeners)
+        for reading in readings:
+            for listener in listeners:
+                listener(reading)
 
     def _on_reset_done(self, msg: Any) -> None:
         with self._cond:
@@ -112,25 +123,33 @@ class World:
             )
 
     def add_odom_listener(self, listener: Any) -> None:
-        """Call `listener(OdomReading)` on every /odom message from now on (an exercise's log)."""
-        self._listeners.append(lambda msg: listener(_reading(msg)))
-        self._listeners[-1].owner = listener  # type: ignore[attr-defined]
+        """Call `listener(OdomReading)` on every /odom sample from now on (an exercise's log)."""
+        self._listeners.append(listener)
 
     def remove_odom_listener(self, listener: Any) -> None:
         """Stop calling a listener given to `add_odom_listener`."""
-        self._listeners = [f for f in self._listeners if getattr(f, "owner", None) is not listener]
+        self._listeners = [f for f in self._listeners if f is not listener]
 
     def wait_for_odom(self, predicate: Any = None, timeout: float = 10.0) -> OdomReading:
-        """Wait for an /odom reading (matching `predicate`, if given); raise TimeoutError."""
+        """Return the latest /odom reading if it matches `predicate` (or none is given), else
+        the first later one that does; raise TimeoutError."""
         deadline = time.monotonic() + timeout
         with self._cond:
-            while self._latest is None or (predicate is not None and not predicate(self._latest)):
+            latest = self._latest
+            if latest is not None and (predicate is None or predicate(latest)):
+                return latest
+            seen = self._received
+            while True:
+                for number, reading in list(self._recent):
+                    if number > seen:
+                        seen = number
+                        if predicate is None or predicate(reading):
+                            return reading
                 remaining = deadline - time.monotonic()
                 if remaining <= 0:
                     self._check_alive()
                     raise TimeoutError(f"no matching /odom within {timeout:g} s")
                 self._cond.wait(min(remaining, 0.2))
-            return self._latest
 
     def odom(self) -> OdomReading:
         """Return the latest /odom reading."""

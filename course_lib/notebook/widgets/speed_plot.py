@@ -10,21 +10,23 @@ import threading
 from collections import deque
 from typing import Any
 
+from ...sim.world.samples import SAMPLES_TOPIC, unpack
 from ...viz.speed_svg import speed_svg
 from .events import changes_of, subscribe_parameter_events
 
 __all__ = ["REFRESH_S", "SpeedPlot"]
 
 REFRESH_S = 1.0  # the live plot redraws at most this often, and only after new samples
-ODOM_DEPTH = 100  # /odom comes 50 times a second: 2 s of samples wait while the kernel is busy
+SAMPLES_DEPTH = 20  # 2 s of /odom's samples (a message per 0.1 s) wait while the kernel is busy
 _STILL_MPS = 1e-3  # samples of a robot standing still (speed ~0, unchanged) redraw nothing
 
 
 class SpeedPlot:
-    """Record /odom speed and /parameter_events; show them live or as a still picture."""
+    """Record /odom's speed samples and /parameter_events; show them live or as a still
+    picture."""
 
     def __init__(self, session: Any, *, node: str = "/param_vel_node", window: int = 3000) -> None:
-        from nav_msgs.msg import Odometry
+        from std_msgs.msg import Float64MultiArray
 
         self.session = session
         self.node = node  # only this node's velocity changes are marked
@@ -39,12 +41,16 @@ class SpeedPlot:
         self._image: Any = None
         self._thread: threading.Thread | None = None
         node = session.node
-        self._odom = node.create_subscription(Odometry, "/odom", self._on_odom, ODOM_DEPTH)
+        self._odom = node.create_subscription(
+            Float64MultiArray, SAMPLES_TOPIC, self._on_samples, SAMPLES_DEPTH
+        )
         self._stop_events = subscribe_parameter_events(session, self._on_event)
 
-    def _on_odom(self, msg: Any) -> None:
-        stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
-        speed = msg.twist.twist.linear.x
+    def _on_samples(self, msg: Any) -> None:
+        for sample in unpack(msg.data):
+            self._add(sample.time_s, sample.linear_mps)
+
+    def _add(self, stamp: float, speed: float) -> None:
         with self._lock:
             last = self.samples[-1] if self.samples else None
             if last and stamp < last[0]:

@@ -17,11 +17,12 @@ from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPo
 from rclpy.qos_overriding_options import QoSOverridingOptions
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan
-from std_msgs.msg import String, UInt32
+from std_msgs.msg import Float64MultiArray, String, UInt32
 
 from ..world.frames import robot_frames
 from ..world.pacing import Pacer, Schedule
 from ..world.physics import Simulation
+from ..world.samples import FIELDS, SAMPLES_TOPIC, batch_size
 from .messages import Frames, MessageFactory
 from .nodes import create_nodes, node_specs
 from .tf import TfFactory, TFMessage
@@ -67,6 +68,8 @@ class Bridge:
             "tf_odom": lambda: self.tf.odom(factory.stamp),
             "tf_wheels": lambda: self.tf.wheels(factory.stamp),
         }
+        self._rows: list[float] = []  # samples waiting for the next SAMPLES_TOPIC message
+        self._batch = batch_size(settings.rates.odom_hz)
         self.pacer = Pacer(settings.real_time_factor)
         self.paused = False
         self._inputs: collections.deque[tuple[str, Any]] = collections.deque()
@@ -126,6 +129,7 @@ class Bridge:
         n["turtlebot3_diff_drive"].create_subscription(Twist, "/cmd_vel", self._on_cmd_vel, 10)
         n["mujoco"].create_subscription(UInt32, RESET_TOPIC, self._on_reset, 10)
         self._reset_done = n["mujoco"].create_publisher(UInt32, RESET_DONE_TOPIC, 10)
+        self._samples = n["mujoco"].create_publisher(Float64MultiArray, SAMPLES_TOPIC, 10)
 
     def _spin(self) -> None:
         """Serve the nodes' callbacks; a callback's error stops the whole world, logged."""
@@ -172,6 +176,16 @@ class Bridge:
         self.messages.restamp()
         for name in read:
             self.pub[name].publish(self._builders[name]())
+        if "odom" in streams and self._samples.get_subscription_count():
+            self._rows += self.messages.sample_row()
+            if len(self._rows) >= self._batch * len(FIELDS):
+                self._flush_samples()
+
+    def _flush_samples(self) -> None:
+        """Publish the samples that wait (the course's readers get them now)."""
+        if self._rows:
+            self._samples.publish(Float64MultiArray(data=self._rows))
+            self._rows = []
 
     def _apply_inputs(self) -> None:
         """Apply commands and resets in the order they arrived."""
@@ -183,6 +197,7 @@ class Bridge:
                 self.sim.reset()
                 self.pacer.restart()
                 self._publish(["odom", "joint_states", "tf_odom", "tf_wheels"])
+                self._flush_samples()  # the start pose reaches the readers before the reply
                 self._reset_done.publish(UInt32(data=value))
 
     def run(self, *, ready: Any = None, max_sim_time_s: float | None = None) -> None:
@@ -215,6 +230,7 @@ class Bridge:
                 break
             self._apply_inputs()
             if self.paused:
+                self._flush_samples()
                 self._wake.wait(0.1)
                 self._wake.clear()
                 continue

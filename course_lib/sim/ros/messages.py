@@ -85,6 +85,23 @@ class MessageFactory:
         twist.angular.z = float(angular[2])
         return msg
 
+    def sample_row(self) -> list[float]:
+        """Return the robot's sample (world.samples.FIELDS): /odom's values and the wheels."""
+        position, quat = self.sim.base_pose3d()
+        linear, angular = self.sim.body_velocity()
+        (left, right), _ = self.sim.wheels()
+        stamp = self.stamp.sec + self.stamp.nanosec * 1e-9  # as a reader of /odom computes it
+        return [
+            stamp,
+            float(position[0]),
+            float(position[1]),
+            *(float(q) for q in quat),
+            float(linear[0]),
+            float(angular[2]),
+            left,
+            right,
+        ]
+
     def joint_states(self) -> JointState:
         """Return /joint_states for the two wheel joints."""
         (left, right), (left_v, right_v) = self.sim.wheels()

@@ -1,5 +1,6 @@
-"""A lesson's run as data: the robot's poses, wheel angles and speed from /odom and
-/joint_states, bounded, model-free (the model is chosen when the replay is written).
+"""A lesson's run as data: the robot's poses, wheel angles and speed from the simulation's
+samples of /odom and the wheels (sim.world.samples), bounded, model-free (the model is chosen
+when the replay is written).
 
 Unlike `Recorder` (which a learner starts and stops), a session has one run log
 (`run_log(session)`), listening from the first lesson that asks until the session closes:
@@ -16,12 +17,15 @@ import weakref
 from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import mujoco
+from ..world.robot import BASE_HEIGHT_M, WHEEL_JOINTS
+from ..world.samples import SAMPLES_TOPIC, unpack
 
-from ...viz.replay import ReplayFrame
-from ..world.model import BASE_HEIGHT_M, WHEEL_JOINTS
+if TYPE_CHECKING:  # a kernel that records a run never needs MuJoCo or meshcat until it saves
+    import mujoco
+
+    from ...viz.replay import ReplayFrame
 
 __all__ = ["PoseLog", "PoseSample", "RunLog", "replay_frames", "run_log", "wheel_angles"]
 
@@ -90,29 +94,23 @@ class PoseLog:
 
 
 class RunLog(PoseLog):
-    """A PoseLog fed by a session's /odom and /joint_states."""
+    """A PoseLog fed by a session's samples of /odom and the wheels (sim.world.samples)."""
 
     def __init__(self, session: Any, *, fps: int = 30, max_s: float = 300.0) -> None:
-        from nav_msgs.msg import Odometry
-        from sensor_msgs.msg import JointState
+        from std_msgs.msg import Float64MultiArray
 
         super().__init__(fps=fps, max_s=max_s)
         self.session = session
-        self._wheels = (0.0, 0.0)
         node = session.node
         self._subs = [
-            node.create_subscription(Odometry, "/odom", self._on_odom, 50),
-            node.create_subscription(JointState, "/joint_states", self._on_joints, 50),
+            node.create_subscription(Float64MultiArray, SAMPLES_TOPIC, self._on_samples, 20),
         ]
 
-    def _on_joints(self, msg: Any) -> None:
-        self._wheels = wheel_angles(msg)
-
-    def _on_odom(self, msg: Any) -> None:
-        stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
-        p, o = msg.pose.pose.position, msg.pose.pose.orientation
-        pose = (p.x, p.y, p.z + BASE_HEIGHT_M, o.w, o.x, o.y, o.z)
-        self.add(PoseSample(stamp, pose, self._wheels, msg.twist.twist.linear.x))
+    def _on_samples(self, msg: Any) -> None:
+        for s in unpack(msg.data):
+            pose = (s.x, s.y, BASE_HEIGHT_M, s.qw, s.qx, s.qy, s.qz)
+            wheels = (s.wheel_left_rad, s.wheel_right_rad)
+            self.add(PoseSample(s.time_s, pose, wheels, s.linear_mps))
 
     def close(self) -> None:
         """Stop listening (the session is closing, or a test is done); idempotent."""
@@ -137,6 +135,8 @@ def run_log(session: Any, *, fps: int = 30) -> RunLog:
 
 def replay_frames(model: mujoco.MjModel, run: Sequence[PoseSample]) -> list[ReplayFrame]:
     """Return the replay frames of `run` for `model` (its free joint first, as the world's)."""
+    from ...viz.replay import ReplayFrame
+
     adr = [model.joint(j).qposadr[0] for j in WHEEL_JOINTS]
     frames = []
     for sample in run:

@@ -10,13 +10,16 @@ import mujoco
 from ...config.simulation import Obstacle, SimulationSettings
 from ...core.paths import PACKAGE_DIR
 from .kinematics import quat_from_yaw
+from .robot import BASE_BODY, BASE_HEIGHT_M, SCAN_SITE, WHEEL_ACTUATORS, WHEEL_JOINTS
 
 __all__ = [
     "BASE_BODY",
+    "BASE_HEIGHT_M",
     "MODEL_DIR",
     "ROBOT_XML",
     "SCAN_SITE",
     "SCENE_XML",
+    "WHEEL_ACTUATORS",
     "WHEEL_JOINTS",
     "build_model",
     "scan_sensor_name",
@@ -25,11 +28,6 @@ __all__ = [
 MODEL_DIR = PACKAGE_DIR / "models" / "turtlebot3_waffle_pi"
 ROBOT_XML = MODEL_DIR / "turtlebot3_waffle_pi.xml"
 SCENE_XML = MODEL_DIR / "scene.xml"
-BASE_BODY = "base_link"
-BASE_HEIGHT_M = 0.010  # base_link above base_footprint (the ground point), as in the URDF
-SCAN_SITE = "base_scan"
-WHEEL_JOINTS = ("wheel_left_joint", "wheel_right_joint")
-WHEEL_ACTUATORS = ("wheel_left_velocity", "wheel_right_velocity")
 OBSTACLE_PREFIX = "obstacle_"
 
 

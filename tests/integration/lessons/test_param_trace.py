@@ -195,18 +195,26 @@ def test_launch_file_overrides_and_terminal_reset(lesson: Lesson, tmp_path: Path
 
 
 def test_speed_plot_marks_are_numbered_like_the_history(lesson: Lesson) -> None:
+    from std_msgs.msg import Float64MultiArray
+
     from course_lib.notebook.widgets import SpeedPlot
+    from course_lib.sim.world.samples import FIELDS, SAMPLES_TOPIC
 
     _start_node()
     plot = SpeedPlot(lesson.session)
+    # no world here: one sample gives the plot the simulated time its marks are placed at
+    samples = lesson.session.node.create_publisher(Float64MultiArray, SAMPLES_TOPIC, 10)
     try:
         assert run_line("param set /param_vel_node velocity 0.12").output.exit_code == 0
+        assert wait_until(lambda: samples.get_subscription_count() > 0, 10.0)
+        samples.publish(Float64MultiArray(data=[1.0] * len(FIELDS)))
         assert wait_until(lambda: plot.marks, 10.0)
         (entry,) = lesson.history().entries
         assert (entry.number, entry.source) == (1, "%ros2 magic")
         assert [label for _t, label in plot.marks] == ["#1 velocity := 0.12"]
     finally:
         plot.close()
+        lesson.session.node.destroy_publisher(samples)
 
 
 def test_reset_restores_after_each_door(lesson: Lesson, tmp_path: Path) -> None:

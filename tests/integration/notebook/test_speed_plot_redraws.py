@@ -8,11 +8,12 @@ import time
 from collections.abc import Iterator
 
 import pytest
-from nav_msgs.msg import Odometry
+from std_msgs.msg import Float64MultiArray
 
 from course_lib.notebook.widgets import SpeedPlot
 from course_lib.notebook.widgets.speed_plot import REFRESH_S
 from course_lib.session.session import Session
+from course_lib.sim.world.samples import FIELDS, SAMPLES_TOPIC
 
 pytestmark = pytest.mark.ros
 
@@ -24,12 +25,10 @@ def session() -> Iterator[Session]:
     own.close()
 
 
-def _odom(stamp_s: float, speed: float) -> Odometry:
-    msg = Odometry()
-    msg.header.stamp.sec = int(stamp_s)
-    msg.header.stamp.nanosec = int((stamp_s % 1) * 1e9)
-    msg.twist.twist.linear.x = speed
-    return msg
+def _odom(stamp_s: float, speed: float) -> Float64MultiArray:
+    """One /odom sample as the simulation sends it to the course's readers."""
+    row = dict.fromkeys(FIELDS, 0.0) | {"time_s": stamp_s, "qw": 1.0, "linear_mps": speed}
+    return Float64MultiArray(data=list(row.values()))
 
 
 def _wait(predicate, timeout: float) -> bool:  # type: ignore[no-untyped-def]
@@ -55,7 +54,7 @@ def _count_drawings(plot: SpeedPlot) -> list[int]:
 def test_the_live_plot_redraws_only_after_new_samples(session: Session) -> None:
     plot = SpeedPlot(session)
     drawn = _count_drawings(plot)
-    publisher = session.node.create_publisher(Odometry, "/odom", 10)
+    publisher = session.node.create_publisher(Float64MultiArray, SAMPLES_TOPIC, 10)
     try:
         plot.show()
         drawn[0] = 0  # show() draws the first picture itself
@@ -97,7 +96,7 @@ def test_a_change_heard_before_any_sample_is_marked_at_the_first_one(session: Se
     from rcl_interfaces.msg import Parameter, ParameterEvent, ParameterType
 
     plot = SpeedPlot(session)
-    odom = session.node.create_publisher(Odometry, "/odom", 10)
+    odom = session.node.create_publisher(Float64MultiArray, SAMPLES_TOPIC, 10)
     events = session.node.create_publisher(ParameterEvent, "/parameter_events", 10)
     try:
         assert _wait(lambda: events.get_subscription_count() > 0, 10.0)
