@@ -80,3 +80,47 @@ def test_accepts_the_real_tools_common_flags() -> None:
 def test_usage_wraps_to_the_terminal_width() -> None:
     narrow = run_collected(["param", "get"], width=60).stderr
     assert max(len(line) for line in narrow.splitlines()[:-1]) <= 58
+
+
+def test_a_command_line_given_again_parses_and_prints_the_same() -> None:
+    """Parser trees are kept by command line: the same line gives the same namespace, usage,
+    errors and help again (help at the width of the console asking), other lines their own."""
+    from course_lib.ros2.command import parsers
+
+    lines = [
+        ["param", "get", "/param_vel_node", "velocity"],
+        ["param", "get"],
+        ["param", "bogus"],
+        ["node", "list", "--bogus"],
+        ["param", "set", "-h"],
+        ["param"],
+        ["param", "get", "/other", "speed", "--hide-type"],
+    ]
+    first = [run_collected(line) for line in lines]
+    again = [run_collected(line) for line in reversed(lines)][::-1]
+    assert [(o.exit_code, o.stdout, o.stderr) for o in again] == [
+        (o.exit_code, o.stdout, o.stderr) for o in first
+    ]
+    args, _ = parsers.parse(["param", "get", "/param_vel_node", "velocity"])
+    other, _ = parsers.parse(["param", "get", "/other", "speed", "--hide-type"])
+    assert (args.node_name, args.parameter_name, args.hide_type) == (
+        "/param_vel_node",
+        "velocity",
+        False,
+    )
+    assert (other.node_name, other.parameter_name, other.hide_type) == ("/other", "speed", True)
+
+    def help_at(width: int) -> str:
+        sink = parsers._Sink(width=width)
+        token = parsers.output_sink.set(sink)
+        try:
+            parsers.parse(["param", "set", "-h"])
+        except parsers.ParseExit:
+            pass
+        finally:
+            parsers.output_sink.reset(token)
+        return "".join(sink.stdout)
+
+    kept = help_at(40)  # the tree was built for an 80-column console above
+    parsers._trees.clear()
+    assert kept == help_at(40) != first[4].stdout
