@@ -25,10 +25,18 @@ def session() -> Iterator[Session]:
     own.close()
 
 
-def _odom(stamp_s: float, speed: float) -> Float64MultiArray:
-    """One /odom sample as the simulation sends it to the course's readers."""
-    row = dict.fromkeys(FIELDS, 0.0) | {"time_s": stamp_s, "qw": 1.0, "linear_mps": speed}
-    return Float64MultiArray(data=list(row.values()))
+def _odom(stamp_s: float, speed: float, count: int = 1) -> Float64MultiArray:
+    """`count` /odom samples 0.02 s apart from `stamp_s`, as the simulation sends them to the
+    course's readers (5 to a message at 50 Hz)."""
+    data: list[float] = []
+    for i in range(count):
+        row = dict.fromkeys(FIELDS, 0.0) | {
+            "time_s": stamp_s + i * 0.02,
+            "qw": 1.0,
+            "linear_mps": speed,
+        }
+        data += row.values()
+    return Float64MultiArray(data=data)
 
 
 def _wait(predicate, timeout: float) -> bool:  # type: ignore[no-untyped-def]
@@ -69,18 +77,18 @@ def test_the_live_plot_redraws_only_after_new_samples(session: Session) -> None:
         time.sleep(3.0)  # no new sample again
         assert drawn[0] == quiet, "the plot redrew without new samples"
         started = time.monotonic()
-        for i in range(100):  # a busy /odom: 50 samples a second for 2 s
-            publisher.publish(_odom(2.0 + i * 0.02, 0.2))
-            time.sleep(0.02)
+        for i in range(20):  # a busy /odom: 50 samples a second for 2 s
+            publisher.publish(_odom(2.0 + i * 0.1, 0.2, count=5))
+            time.sleep(0.1)
         elapsed = time.monotonic() - started
         assert _wait(lambda: len(plot.samples) == 101, 5.0)
         busy = drawn[0] - quiet
         assert 1 <= busy <= elapsed / REFRESH_S + 2, f"{busy} redraws in {elapsed:.1f} s"
         time.sleep(2 * REFRESH_S + 0.5)
         moving = drawn[0]
-        for i in range(100):  # the robot stopped: samples keep coming, all at speed 0
-            publisher.publish(_odom(4.0 + i * 0.02, 0.0))
-            time.sleep(0.02)
+        for i in range(20):  # the robot stopped: samples keep coming, all at speed 0
+            publisher.publish(_odom(4.0 + i * 0.1, 0.0, count=5))
+            time.sleep(0.1)
         assert _wait(lambda: len(plot.samples) == 201, 5.0)
         time.sleep(2 * REFRESH_S + 0.5)
         assert drawn[0] - moving <= 1, "a still robot's samples redrew the plot"
