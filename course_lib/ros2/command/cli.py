@@ -58,7 +58,7 @@ def _direct_client(argv: list[str], env: dict[str, str]):  # type: ignore[no-unt
         os.environ.update(env)  # this process's participant: the course's discovery settings
         sim_time = _own_node_options(argv)[1]
         node = DirectNode(domain_id=int(env["ROS_DOMAIN_ID"]), use_sim_time=sim_time)
-        atexit.register(node.close)
+        atexit.register(node.close_at_exit)
         return node.client()
 
     return make

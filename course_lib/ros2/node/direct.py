@@ -6,14 +6,17 @@ services; `use_sim_time` is set as `--use-sim-time` asks.
 
 from __future__ import annotations
 
+import faulthandler
 import os
+import sys
 from typing import Any
 
 from ...session.session import SpinningNode
 
-__all__ = ["DirectNode", "cli_node_name", "daemon_node_name"]
+__all__ = ["CLOSE_LIMIT_S", "DirectNode", "cli_node_name", "daemon_node_name"]
 
 NODE_NAME_PREFIX = "_ros2cli"
+CLOSE_LIMIT_S = 5.0  # a command's teardown after its output; then the process ends (exit 1)
 
 
 def cli_node_name(pid: int | None = None) -> str:
@@ -43,6 +46,22 @@ class DirectNode(SpinningNode):
             thread_name="ros2cli-spin",
             parameter_overrides=[Parameter("use_sim_time", value=use_sim_time)],
         )
+
+    def close_at_exit(self) -> None:
+        """Close this node as the process ends, bounded: a teardown that takes more than
+        CLOSE_LIMIT_S ends the process with exit code 1, its output already written.
+
+        Fast DDS can spin for ever destroying a participant (seen once: 68 min at 100% of a
+        core in destroy_participant -> set_listener; once a 60 s hang of `ros2 topic list
+        --no-daemon` in the suite). faulthandler's watchdog is a C thread: it fires even while
+        the stuck call holds the GIL. It stays armed through rclpy's own exit handlers, which
+        run after this one, and dies with the process when the teardown ends in time.
+        """
+        sys.stdout.flush()
+        sys.stderr.flush()
+        quiet = open(os.devnull, "w")  # noqa: SIM115 - kept open for the watchdog to the end
+        faulthandler.dump_traceback_later(CLOSE_LIMIT_S, exit=True, file=quiet)
+        self.close()
 
     def client(self) -> Any:
         """Return a RosClient over this node, whose age counts from the node's birth."""
