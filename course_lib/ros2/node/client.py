@@ -46,6 +46,9 @@ YOUNG_CLIENT_S = 4.0
 # A node missing from a graph known whole for this long is not there: "Node not found" at
 # once, not after DISCOVERY_WAIT_S (a just-started node is waited for: graph_complete).
 SETTLED_QUIET_S = 0.15
+# While participants bound on this host are still unseen (a fresh client, or a starved process
+# on a busy host: seen taking over 4 s), a node lookup waits up to this long before "not found".
+INCOMPLETE_WAIT_S = 12.0
 SERVICE_WAIT_S = 5.0
 CALL_TIMEOUT_S = 10.0
 # First wait for a reply before re-sending a read (a reply normally takes about 1 ms).
@@ -222,7 +225,9 @@ class RosClient:
         return holders, bound is not None and len(seen) == bound
 
     def wait_for_node(self, full_name: str, *, include_hidden: bool, timeout: float) -> bool:
-        """Wait (bounded, at least DISCOVERY_WAIT_S) until `full_name` is in the graph."""
+        """Wait (bounded, at least DISCOVERY_WAIT_S) until `full_name` is in the graph; while
+        this host has participants of the domain the client has not seen, or has seen without
+        their node names yet, up to INCOMPLETE_WAIT_S."""
 
         def found() -> bool:
             names = self.node_names(include_hidden=include_hidden)
@@ -234,7 +239,10 @@ class RosClient:
         while not found():
             now = time.monotonic()
             if now >= deadline:
-                return False
+                view = self.graph_view()  # a participant unseen, or seen with nameless endpoints
+                partial = bool(view.missing_participants) or bool(view.unknown_endpoints)
+                if not partial or now - start >= INCOMPLETE_WAIT_S:
+                    return False
             if self.graph_complete():
                 complete_since = now if complete_since is None else complete_since
                 if now - complete_since >= SETTLED_QUIET_S:

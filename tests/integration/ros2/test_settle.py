@@ -69,3 +69,34 @@ def test_two_live_namesakes_are_both_listed(session: Session) -> None:
     finally:
         first.stop()
         second.stop()
+
+
+def test_a_fresh_client_finds_a_node_whose_process_is_slow_to_answer(session: Session) -> None:
+    """A node's process starved on a busy host answers a fresh client's discovery late (two
+    busy loops on 2 cores: a restarted kernel's `lesson.reset()` said "Node not found ...
+    running nodes: none" while the node ran). Here the process is stopped for 6 s: its sockets
+    are bound, so the client knows a participant is unseen, and waits for it."""
+    import os
+    import signal
+    import threading
+
+    child = session.run("parameter_tests", "param_vel")
+    owner = RosClient(session.node, session.wait_future)
+    try:
+        assert wait_until(lambda: "/param_vel_node" in _names(owner), 10)
+        os.kill(child.pid, signal.SIGSTOP)
+        resume = threading.Timer(6.0, os.kill, args=(child.pid, signal.SIGCONT))
+        late, client = _young_client(session.domain_id)
+        try:
+            started = time.monotonic()
+            resume.start()
+            found = client.wait_for_node("/param_vel_node", include_hidden=False, timeout=0)
+            took = time.monotonic() - started
+            assert found, f"not found after {took:.1f} s"
+            assert took >= 5.0  # found once the process ran again, not before
+        finally:
+            resume.cancel()
+            os.kill(child.pid, signal.SIGCONT)
+            late.close()
+    finally:
+        child.stop()
