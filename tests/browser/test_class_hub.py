@@ -113,7 +113,8 @@ def test_two_learners_each_drive_their_own_robot(
         try:
             listing = terminal.run("ros2 node list", "/mujoco")
             assert listing.count("/param_vel_node") == 1, listing
-            domains[name] = terminal.run("echo domain=$ROS_DOMAIN_ID", "domain=")
+            # to its end: the typed line itself says "domain=" before the shell answers
+            domains[name] = terminal.run_to_end("echo domain=$ROS_DOMAIN_ID")[0]
         finally:
             terminal.close()
     mine = [re.findall(r"domain=(\d+)", text)[-1] for text in domains.values()]
