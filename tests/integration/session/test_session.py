@@ -16,7 +16,6 @@ from rclpy.parameter_client import AsyncParameterClient
 from course_lib.core.errors import ExecutableNotFoundError, PackageNotFoundError
 from course_lib.core.paths import ROSJECT_DIR
 from course_lib.core.procfs import pid_alive
-from course_lib.core.waiting import wait_until
 from course_lib.processes.children import OWNER_ENV, SPAWNED_ENV, command_tag, reap_orphans
 from course_lib.session.session import Session
 
@@ -86,26 +85,24 @@ def test_missing_package_and_executable(session: Session) -> None:
         session.run("parameter_tests", "no_such_exec")
 
 
-def test_two_sessions_never_see_each_other(session: Session) -> None:
-    def listed() -> bool:
-        return ("param_vel_node", "/") in session.node.get_node_names_and_namespaces()
-
-    # an earlier test's node of this session's own domain may still be leaving its graph
-    assert wait_until(lambda: not listed(), 10), "this domain's own param_vel_node stays listed"
-    other = Session()
+def test_two_sessions_never_see_each_other() -> None:
+    # Two fresh sessions: the module's own may still list a node an earlier test stopped (a
+    # name can outlive its participant in the graph cache: seen for over 30 s once, ros2#1413).
+    watcher, other = Session(), Session()
     try:
-        assert other.domain_id != session.domain_id
+        assert other.domain_id != watcher.domain_id
         node = other.run("parameter_tests", "param_vel")
         try:
             assert velocity_of(other) == 0.0
-            names = session.node.get_node_names_and_namespaces()
+            names = watcher.node.get_node_names_and_namespaces()
             assert ("param_vel_node", "/") not in names
-            client = AsyncParameterClient(session.node, "/param_vel_node")
+            client = AsyncParameterClient(watcher.node, "/param_vel_node")
             assert not client.wait_for_services(timeout_sec=1.0)
         finally:
             node.stop()
     finally:
         other.close()
+        watcher.close()
 
 
 OWNER_SCRIPT = textwrap.dedent(
