@@ -255,3 +255,25 @@ def test_the_course_samples_are_odoms_and_the_wheels(session: Session, fresh: Wo
     finally:
         for sub in subs:
             session.node.destroy_subscription(sub)
+
+
+def test_a_paused_world_hands_its_last_samples_over(session: Session, fresh: World) -> None:
+    """Samples wait to fill a message (5 at 50 Hz); a pause sends those that wait, so the world
+    handle's latest reading is /odom's last one, not up to 0.08 s older."""
+    from nav_msgs.msg import Odometry
+
+    last = _last_message(session, Odometry, "/odom", 50)
+    fresh.drive(0.2, 0.0)
+    try:
+        for cycle in range(8):  # a pause lands at any point of a batch: several pauses
+            fresh.wait_sim_time(fresh.odom().time_s + 0.13 + 0.02 * cycle)
+            fresh.pause()
+            try:
+                threading.Event().wait(0.3)  # a tick in flight lands, the pause's flush follows
+                message = last()
+                odom_stamp = message.header.stamp.sec + message.header.stamp.nanosec * 1e-9
+                assert fresh.odom().time_s == odom_stamp, f"pause {cycle + 1}"
+            finally:
+                fresh.resume()
+    finally:
+        fresh.drive(0.0, 0.0)
