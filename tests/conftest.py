@@ -19,6 +19,17 @@ def pytest_sessionstart(session: pytest.Session) -> None:
         RERUNS_FILE.unlink(missing_ok=True)
 
 
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Never rerun a notebook's cell: a rerun runs it alone in a fresh kernel, without the
+    cells before it (CI saw lesson 2's self-check fail with "name 'lesson' is not defined"
+    after its cell 5 was rerun), which hides the first failure behind a false one."""
+    from nbval.plugin import IPyNbCell
+
+    for item in items:
+        if isinstance(item, IPyNbCell):
+            item.add_marker(pytest.mark.flaky(reruns=0))
+
+
 def pytest_runtest_logreport(report: pytest.TestReport) -> None:
     """Keep why a test was rerun (a rerun is a flake to fix; -rR names it, never says why)."""
     if report.outcome != "rerun" or "PYTEST_XDIST_WORKER" in os.environ:

@@ -16,6 +16,7 @@ from rclpy.action.graph import (
     get_action_client_names_and_types_by_node,
     get_action_server_names_and_types_by_node,
 )
+from rclpy.node import NodeNameNonExistentError
 from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
 
 from ...core import param_journal
@@ -23,6 +24,7 @@ from ...core.waiting import wait_until
 from ..results import Descriptor, NodeInfo, NodeName, ParamRange, SetResult, TopicInfo
 from ..values import VALUE_FIELDS, ParamValue, journal_value, value_from_msg
 from .discovery import (
+    GHOST_GRACE_S,
     UNKNOWN_NODE,
     GraphView,
     domain_newcomers,
@@ -128,6 +130,8 @@ class RosClient:
         # This process's participant reads the course's Fast DDS profile from its environment.
         self._timing = profile_timing(os.environ.get("FASTRTPS_DEFAULT_PROFILES_FILE"))
         self._domain_id = node.context.get_domain_id()
+        # When this client first listed each node name it lists now (see node_names).
+        self._first_listed: dict[str, float] = {}
 
     # -- graph ---------------------------------------------------------------------------
     def settle(self, *, min_age_s: float = 0.0) -> None:
@@ -191,22 +195,57 @@ class RosClient:
         return bool(self.node.get_parameter("use_sim_time").value)
 
     def node_names(self, *, include_hidden: bool = False) -> list[NodeName]:
-        """Return the nodes the graph shows (hidden ones only if asked), less the ghosts of a
-        name listed twice (`discovery.without_ghosts`)."""
-        listed = [
-            NodeName(name, ns, ns + ("" if ns.endswith("/") else "/") + name)
-            for name, ns in self.node.get_node_names_and_namespaces()
-        ]
-        full = [n.full_name for n in listed]
-        if len(set(full)) < len(full):
-            kept = Counter(without_ghosts(full, *self._holders()))
+        """Return the nodes the graph shows (hidden ones only if asked), less the ghosts of
+        nodes that have left (`discovery.without_ghosts`). A name just listed without an
+        endpoint is waited for (at most GHOST_GRACE_S): a new node's endpoints follow its name,
+        a ghost's never do."""
+        deadline = time.monotonic() + GHOST_GRACE_S + 0.5
+        while True:
+            listed = [
+                NodeName(name, ns, ns + ("" if ns.endswith("/") else "/") + name)
+                for name, ns in self.node.get_node_names_and_namespaces()
+            ]
+            full = [n.full_name for n in listed]
+            now = time.monotonic()
+            first = self._first_listed
+            self._first_listed = first = {name: first.get(name, now) for name in full}
+            if not self._may_list_ghosts(listed):
+                break
+            holders, settled = self._holders()
+            ages = {name: now - since for name, since in first.items()}
+            young = [n for n in full if not holders.get(n) and ages[n] < GHOST_GRACE_S]
+            if settled and young and now < deadline:
+                time.sleep(_POLL_S)
+                continue
+            kept = Counter(without_ghosts(full, holders, settled, listed_for=ages))
             unique = []
             for name in listed:
                 if kept[name.full_name] > 0:
                     kept[name.full_name] -= 1
                     unique.append(name)
             listed = unique
+            break
         return [n for n in listed if include_hidden or (n.name and not n.name.startswith("_"))]
+
+    def _may_list_ghosts(self, listed: Sequence[NodeName]) -> bool:
+        """Return whether a name is listed twice, or without an endpoint of its own (a ghost
+        has none); the full search of the graph (`_holders`) runs only then."""
+        if len({n.full_name for n in listed}) < len(listed):
+            return True
+        node = self.node
+        queries = (
+            node.get_publisher_names_and_types_by_node,
+            node.get_service_names_and_types_by_node,
+            node.get_subscriber_names_and_types_by_node,
+            node.get_client_names_and_types_by_node,
+        )
+        for name in listed:
+            try:
+                if not any(query(name.name, name.namespace) for query in queries):
+                    return True
+            except NodeNameNonExistentError:
+                return True  # it left while we looked: the graph is changing
+        return False
 
     def _holders(self) -> tuple[dict[str, set[tuple[int, ...]]], bool]:
         """Return the participants holding endpoints of each node name, and whether every

@@ -29,6 +29,7 @@ from ...core import procfs
 __all__ = [
     "DEFAULT_SPIN_TIME",
     "DEFAULT_TIMING",
+    "GHOST_GRACE_S",
     "NAME_WAIT_S",
     "DiscoveryTiming",
     "GraphView",
@@ -306,23 +307,42 @@ def domain_newcomers(
     return found
 
 
+# A node's name (its participant's `ros_discovery_info`) can arrive moments before its first
+# endpoint: a name no seen participant holds is a ghost only once listed this long.
+GHOST_GRACE_S = 1.0
+
+
 def without_ghosts(
-    names: Sequence[str], holders: Mapping[str, set[tuple[int, ...]]], settled: bool
+    names: Sequence[str],
+    holders: Mapping[str, set[tuple[int, ...]]],
+    settled: bool,
+    *,
+    listed_for: Mapping[str, float] | None = None,
 ) -> list[str]:
-    """Return `names` (full node names, in the graph's order) less the ghosts of a name listed
-    more than once.
+    """Return `names` (full node names, in the graph's order) less the ghosts.
 
     A node that has left can stay in a long-lived client's node list with no participant
     behind it (the graph cache re-adds a participant's node info that arrives after the
-    participant's removal; the real daemon shows such ghosts too). `holders` maps a node name
-    to the participants seen holding its endpoints; once the graph is `settled` (every
-    participant bound on this host has been seen), a name is listed as many times as
-    participants hold it, and at least once: a name listed once is never hidden.
+    participant's removal; the real daemon shows such ghosts too: ros2/ros2#1413). `holders`
+    maps a node name to the participants seen holding its endpoints. Once the graph is
+    `settled` (every participant bound on this host has been seen), a name is listed as many
+    times as participants hold it; a name none holds is dropped once this client has listed
+    it for GHOST_GRACE_S (`listed_for`, seconds; a name not in it is new, and kept once).
     """
-    counts = Counter(names)
-    if not settled or all(count == 1 for count in counts.values()):
+    if not settled:
         return list(names)
-    left = {name: max(1, len(holders.get(name, ()))) for name in counts}
+    ages = listed_for or {}
+
+    def allowed(name: str) -> int:
+        held = len(holders.get(name, ()))
+        if held:
+            return held
+        return 0 if ages.get(name, 0.0) >= GHOST_GRACE_S else 1
+
+    counts = Counter(names)
+    left = {name: allowed(name) for name in counts}
+    if all(left[name] >= count for name, count in counts.items()):
+        return list(names)
     kept = []
     for name in names:
         if left[name] > 0:

@@ -193,11 +193,22 @@ def test_a_ghost_of_a_name_listed_twice_is_dropped_once_the_graph_is_settled() -
     assert without_ghosts(names, one, settled=False) == names
 
 
-def test_a_name_listed_once_is_never_hidden() -> None:
-    from course_lib.ros2.node.discovery import without_ghosts
+def test_a_name_no_participant_holds_is_dropped_once_listed_for_the_grace() -> None:
+    from course_lib.ros2.node.discovery import GHOST_GRACE_S, without_ghosts
 
-    assert without_ghosts(["/a", "/b"], {}, settled=True) == ["/a", "/b"]
+    names = ["/mujoco", "/param_vel_node"]
+    held = {"/mujoco": {(1,)}}
+    old = {"/mujoco": 60.0, "/param_vel_node": GHOST_GRACE_S}
+    assert without_ghosts(names, held, settled=True, listed_for=old) == ["/mujoco"]
+    # just listed: a new node's endpoints may still follow its name
+    new = {**old, "/param_vel_node": GHOST_GRACE_S / 2}
+    assert without_ghosts(names, held, settled=True, listed_for=new) == names
     assert without_ghosts(["/a", "/a"], {}, settled=True) == ["/a"]
+    # a participant bound on this host not seen yet may hold it
+    assert without_ghosts(names, held, settled=False, listed_for=old) == names
+    # held: never dropped, however long listed
+    both = {**held, "/param_vel_node": {(2,)}}
+    assert without_ghosts(names, both, settled=True, listed_for=old) == names
 
 
 # A node that has just started (pid 4242), as a warm client sees it: its first endpoints
