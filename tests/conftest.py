@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import os
+import signal
+import threading
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
 
@@ -48,6 +51,37 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
         terminalreporter.write_line("===== " + lines[0])
         for line in lines[1:][-_RERUN_TAIL:]:
             terminalreporter.write_line(line)
+
+
+def _sigint_disposition() -> str:
+    """Return whether this process ignores SIGINT and this thread blocks it (from /proc: what
+    children inherit, whoever set it, Python or C)."""
+    status = Path(f"/proc/self/task/{threading.get_native_id()}/status").read_text()
+    fields = dict(line.split(":", 1) for line in status.splitlines() if ":" in line)
+    bit = 1 << (signal.SIGINT - 1)
+    ignored = int(fields["SigIgn"], 16) & bit
+    blocked = int(fields["SigBlk"], 16) & bit
+    return f"SIGINT ignored={bool(ignored)} blocked={bool(blocked)}"
+
+
+# A shell without job control starts background commands (`make test &`) with SIGINT ignored,
+# and every child inherits that: the Ctrl-C tests' commands would never see their Ctrl-C.
+# The suite's processes take SIGINT as a terminal gives it (Python's default handler).
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+_SIGINT_AT_START = _sigint_disposition()
+
+
+@pytest.fixture(autouse=True)
+def _sigint_left_alone() -> Iterator[None]:
+    """Fail where SIGINT became ignored or blocked in the test process (a test, or the module
+    fixtures set up before it): every child started afterwards inherits it, and Ctrl-C tests
+    fail far from the cause."""
+    before = _sigint_disposition()
+    assert before == _SIGINT_AT_START, f"SIGINT changed before this test: {before}"
+    yield
+    after = _sigint_disposition()
+    assert after == before, f"this test changed the test process's SIGINT: {before} -> {after}"
 
 
 @pytest.fixture(scope="module")
