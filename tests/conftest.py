@@ -13,6 +13,11 @@ import pytest
 from course_lib.core.paths import REPO_ROOT
 from course_lib.session.session import Session
 
+if os.environ.get("COURSE_TRACE_ALLOCATIONS"):  # e.g. 25: frames kept; slow, so asked for
+    import tracemalloc  # an unclosed socket's warning then says where it was made
+
+    tracemalloc.start(int(os.environ["COURSE_TRACE_ALLOCATIONS"]))
+
 RERUNS_FILE = REPO_ROOT / "test-artifacts" / "reruns.txt"
 _RERUN_TAIL = 40  # lines of each rerun's failure shown at the end of the run
 
