@@ -221,30 +221,40 @@ def test_the_course_samples_are_odoms_and_the_wheels(session: Session, fresh: Wo
     odom: dict[float, Any] = {}
     joints: dict[float, Any] = {}
     batches: list[list[Any]] = []
+    keep = 1000  # all of the run (/odom at 200 Hz here), however late this process takes them
 
     def stamp(msg: Any) -> float:
         return msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
 
     subs = [
         session.node.create_subscription(
-            Odometry, "/odom", lambda m: odom.update({stamp(m): m}), 50
+            Odometry, "/odom", lambda m: odom.update({stamp(m): m}), keep
         ),
         session.node.create_subscription(
-            JointState, "/joint_states", lambda m: joints.update({stamp(m): m}), 50
+            JointState, "/joint_states", lambda m: joints.update({stamp(m): m}), keep
         ),
         session.node.create_subscription(
-            Float64MultiArray, SAMPLES_TOPIC, lambda m: batches.append(unpack(m.data)), 50
+            Float64MultiArray, SAMPLES_TOPIC, lambda m: batches.append(unpack(m.data)), keep
         ),
     ]
     try:
         fresh.drive(0.2, 0.3)
-        _wait_until(lambda: len(batches) >= 12)
+        # each subscription hears from its first match on: a busy process matches them one by
+        # one, so only batches taken once /odom and /joint_states both arrived are compared
+        _wait_until(lambda: bool(odom) and bool(joints))
+        heard = len(batches)
+        _wait_until(lambda: len(batches) >= heard + 12)
         fresh.drive(0.0, 0.0)
-        full = [b for b in batches[1:-1]]
+        full = batches[heard + 1 : -1]
         assert {len(b) for b in full} == {batch_size(50.0)}, [len(b) for b in full]
         samples = [s for b in full for s in b]
         matched = [s for s in samples if s.time_s in odom and s.time_s in joints]
-        assert len(matched) >= len(samples) - 2, "samples with no /odom of the same stamp"
+        # this process may miss some /odom messages (a busy host); the samples may miss none
+        assert len(matched) >= len(samples) // 2, "samples with no /odom of the same stamp"
+        times = {s.time_s for s in samples}
+        first, last = min(times), max(times)
+        lost = [t for t in odom if first <= t <= last and t not in times]
+        assert not lost, f"/odom messages with no sample: {lost}"
         for s in matched:
             o, j = odom[s.time_s], joints[s.time_s]
             p, q, t = o.pose.pose.position, o.pose.pose.orientation, o.twist.twist
