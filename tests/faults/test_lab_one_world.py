@@ -103,3 +103,26 @@ def test_a_lessons_driver_stops_the_other_lessons_drivers_and_names_the_learners
     finally:
         terminal.close()
     assert pid_alive(int(eleven.ok("print(lesson.node('descriptor_vel').pid)").text.split()[0]))
+
+
+def _open_sockets() -> int:
+    import contextlib
+    import os
+
+    count = 0
+    for fd in os.listdir("/proc/self/fd"):
+        with contextlib.suppress(OSError):  # the listing's own descriptor, closed by now
+            count += os.readlink(f"/proc/self/fd/{fd}").startswith("socket:")
+    return count
+
+
+def test_a_closed_terminal_leaves_no_socket_in_the_test_process(lab: LabServer) -> None:
+    """The tests' terminal closes its websocket for good: one left open (tornado's, freed by
+    the garbage collector in whichever test runs then) made pytest fail that other test with
+    an "unclosed socket" warning, the suite's one rerun in most full runs."""
+    before = _open_sockets()
+    for _ in range(3):
+        terminal = RestTerminal(lab.base_url, lab.token)
+        terminal.run("echo up-$((40 + 2))", r"up-42")
+        terminal.close()
+    assert _open_sockets() == before

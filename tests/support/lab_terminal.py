@@ -18,6 +18,7 @@ from tornado.websocket import websocket_connect
 
 __all__ = ["RestTerminal", "rest"]
 
+CLOSE_WAIT_S = 5.0  # tornado gives a server that long to answer a close
 _OPENER = urllib.request.build_opener(urllib.request.ProxyHandler({}))  # the lab is local
 
 
@@ -103,6 +104,13 @@ class RestTerminal:
 
         async def close() -> None:  # on this terminal's own loop, as every other write
             self._ws.close()
+            # until the server's close frame ends the connection (tornado then closes the
+            # socket; a loop closed before that leaves it to the garbage collector)
+            try:
+                while await asyncio.wait_for(self._ws.read_message(), CLOSE_WAIT_S) is not None:
+                    pass
+            except asyncio.TimeoutError:
+                pass
 
         self._loop.run_until_complete(close())
         self._loop.close()

@@ -38,6 +38,8 @@ async def _transforms_through(url: str, seconds: float) -> int:
         message = await asyncio.wait_for(connection.read_message(), 2.0)
         count += isinstance(message, bytes) and b"set_transform" in message
     connection.close()
+    while await asyncio.wait_for(connection.read_message(), 5.0) is not None:
+        pass  # until the close handshake ends and tornado closes the socket
     return count
 
 

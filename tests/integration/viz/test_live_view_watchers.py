@@ -17,6 +17,7 @@ import mujoco
 import pytest
 import umsgpack
 
+from course_lib.core.waiting import wait_until
 from course_lib.sim.view.live import LiveView
 from course_lib.sim.world.model import build_model
 from course_lib.tools.testing import independent_env
@@ -44,7 +45,7 @@ class Browser:
         import tornado.websocket
 
         connection = await tornado.websocket.websocket_connect(f"ws://127.0.0.1:{port}/")
-        self.loop.create_task(self._read(connection))
+        self.reader = self.loop.create_task(self._read(connection))
         return connection
 
     async def _read(self, connection) -> None:  # type: ignore[no-untyped-def]
@@ -65,8 +66,9 @@ class Browser:
         time.sleep(0.2)
 
     def close(self) -> None:
+        """Close the websocket, wait until the reader saw it end (its socket closed), stop."""
         self.loop.call_soon_threadsafe(self.connection.close)
-        time.sleep(0.2)
+        wait_until(lambda: self.reader.done(), 5.0)
         self.loop.call_soon_threadsafe(self.loop.stop)
         self.thread.join(5)
 
