@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import signal
+import sys
 import threading
 from collections.abc import Iterator
 from pathlib import Path
@@ -87,6 +88,19 @@ def _sigint_left_alone() -> Iterator[None]:
     yield
     after = _sigint_disposition()
     assert after == before, f"this test changed the test process's SIGINT: {before} -> {after}"
+
+
+@pytest.fixture(autouse=True)
+def _terminals_closed() -> Iterator[None]:
+    """Close the test terminals a test opened and left open, in that test (a socket freed
+    later by the garbage collector fails whichever test runs then: "unclosed socket"); those
+    of its module's fixtures stay open for the module's other tests."""
+    module = sys.modules.get("lab_terminal")
+    before = module.open_terminals() if module is not None else set()
+    yield
+    module = sys.modules.get("lab_terminal")
+    if module is not None:
+        module.close_terminals(module.open_terminals() - before)
 
 
 @pytest.fixture(scope="module")

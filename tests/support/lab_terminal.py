@@ -16,7 +16,7 @@ from typing import Any
 from tornado.httpclient import HTTPRequest
 from tornado.websocket import websocket_connect
 
-__all__ = ["RestTerminal", "rest"]
+__all__ = ["RestTerminal", "close_terminals", "open_terminals", "rest"]
 
 CLOSE_WAIT_S = 5.0  # tornado gives a server that long to answer a close
 _OPENER = urllib.request.build_opener(urllib.request.ProxyHandler({}))  # the lab is local
@@ -58,6 +58,7 @@ class RestTerminal:
         self._loop = asyncio.new_event_loop()
         url = f"{base_url.replace('http', 'ws', 1)}/terminals/websocket/{self.name}"
         self._ws = self._loop.run_until_complete(_connect(f"{url}?token={token}", token))
+        _OPEN.add(self)
         self.shell_pid = int(self.run("echo shell-pid=$$", r"shell-pid=(\d+)")[1])
 
     def run(self, command: str, expect: str, timeout: float = 60.0) -> re.Match[str]:
@@ -100,7 +101,10 @@ class RestTerminal:
         self.run("echo back-$((20 + 22))", r"back-42")
 
     def close(self) -> None:
-        """Close the websocket (the shell keeps running until the server ends it)."""
+        """Close the websocket (the shell keeps running until the server ends it); again: no-op."""
+        if self not in _OPEN:
+            return
+        _OPEN.discard(self)
 
         async def close() -> None:  # on this terminal's own loop, as every other write
             self._ws.close()
@@ -114,3 +118,17 @@ class RestTerminal:
 
         self._loop.run_until_complete(close())
         self._loop.close()
+
+
+_OPEN: set[RestTerminal] = set()
+
+
+def open_terminals() -> set[RestTerminal]:
+    """Return the terminals opened and not closed yet."""
+    return set(_OPEN)
+
+
+def close_terminals(terminals: set[RestTerminal]) -> None:
+    """Close `terminals` (the suite closes those a test left open, after it)."""
+    for terminal in terminals:
+        terminal.close()
