@@ -106,14 +106,11 @@ def test_a_lessons_driver_stops_the_other_lessons_drivers_and_names_the_learners
 
 
 def _open_sockets() -> int:
-    import contextlib
     import os
 
-    count = 0
-    for fd in os.listdir("/proc/self/fd"):
-        with contextlib.suppress(OSError):  # the listing's own descriptor, closed by now
-            count += os.readlink(f"/proc/self/fd/{fd}").startswith("socket:")
-    return count
+    from course_lib.core.procfs import fd_targets
+
+    return sum(target.startswith("socket:") for target in fd_targets(os.getpid()))
 
 
 def test_a_closed_terminal_leaves_no_socket_in_the_test_process(lab: LabServer) -> None:
