@@ -58,11 +58,14 @@ doctor:  ## Check the install works (rclpy, tf2_msgs, the camera), say what is s
 stop: ## Stop this user's course processes (labs, simulations, viewers, nodes, daemons)
 	$(PY) -m course_lib stop
 
-$(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py
+# rosidl_import.pth: message imports skip rosidl_generator_py's code generator (7.5 MiB a
+# process; course_lib/tools/rosidl_import.py).
+$(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py course_lib/tools/rosidl_import.py
 	@$(PYTHON) scripts/check_platform.py
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --disable-pip-version-check -r environment.txt
 	$(PY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
+	$(PY) -c "from course_lib.tools.rosidl_import import install_pth; install_pth()"
 	@touch $@
 
 # The venv's `ros2` starts Python once (course_lib/ros2/command/quick.py): after every pip
