@@ -1,7 +1,7 @@
 """Peak memory of a whole course session: a real kernel running lesson 7's steps.
 
 Run: .venv/bin/python -m bench.session_memory
-Sums the RSS of the kernel and every process below it (simulation, meshcat server, the
+Sums the RSS of the kernel and every process below it (simulation serving the 3D view, the
 learner's node), sampled every 50 ms while the lesson runs; shared pages count once per process.
 """
 

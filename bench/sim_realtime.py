@@ -57,13 +57,11 @@ def main() -> None:
                 f"sim process CPU at real time, {label}: {100 * share:5.1f}% of one core "
                 f"(goal < 25%; {WINDOW_S:g} s window)"
             )
-            if show:
+            if show:  # the simulation process serves the view too (viz.server.serve_in_thread)
                 rate = asyncio.run(viewer_updates(world.viewer.port, 5.0))
-                server = cpu_share(world.viewer.process.pid, 5.0)
                 print(
                     f"pose updates reaching a viewer client: {rate:5.1f} per second (goal >= 30)"
                 )
-                print(f"meshcat server CPU: {100 * server:5.1f}% of one core")
                 from sensor_msgs.msg import Image
 
                 frames: list[float] = []

@@ -34,8 +34,6 @@ class WorldKeeper:
             return ""
         if not self._sim.alive:
             return f"The simulation had stopped (exit code {self._sim.returncode}); restarted it."
-        if self._viewer is None or not self._viewer.process.alive:
-            return "The 3D view had stopped; restarted the simulation and its view."
         if config != self._config:
             return f"Restarted the simulation with {config or 'config/simulation.yaml'}."
         return ""

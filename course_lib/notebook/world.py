@@ -1,7 +1,7 @@
 """The notebook's handle on the simulated world (`course_lib.notebook.start_world()` returns one).
 
 Lesson 3 starts the world and looks at it; lesson 7 reads the robot's speed from it. The
-simulation and the meshcat server are children of the course session, so they end with it.
+simulation, which serves the 3D view, is a child of the course session, so it ends with it.
 """
 
 from __future__ import annotations

@@ -3,8 +3,8 @@
 Lesson 3 calls it. Inside a lab (`make lab`) the world belongs to the lab: every call, shown
 or not, whatever real-time factor it asks for, attaches to the lab's one world (changing its
 real-time factor in place, in one printed line), so every notebook of the lab shows and drives
-the same robot on one clock. Elsewhere the simulation and its meshcat server are children of
-the course session and end with it (or with the kernel, however it dies).
+the same robot on one clock. Elsewhere the simulation (serving its 3D view) is a child of
+the course session and ends with it (or with the kernel, however it dies).
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Start the simulation and its meshcat viewer as two child processes, whoever owns them.
+"""Start the simulation, which serves its own 3D view, as a child process of whoever owns it.
 
 A kernel outside a lab starts them as its session's children (`notebook.world_start`); inside a
 lab the lab's machine service starts them as its own (`lab.world_keeper`), so every notebook
@@ -29,22 +29,24 @@ def start_world_processes(
     real_time_factor: float | None,
     timeout: float,
 ) -> tuple[ChildProcess, Any]:
-    """Start the viewer (if `show`) and the simulation; return (simulation, viewer or None)."""
+    """Start the simulation (serving its view if `show`); return (simulation, viewer or None).
+
+    The viewer is the simulation process itself (`--serve-view`): stopping either stops both.
+    """
     from ..viz.viewer import Viewer
 
-    viewer = Viewer.start(spawn, timeout=min(timeout, 10.0)) if show else None
     argv = [sys.executable, "-m", "course_lib.sim"]
     if config is not None:
         argv += ["--config", str(config)]
     if real_time_factor is not None:
         argv += ["--real-time-factor", f"{real_time_factor:g}"]
-    if viewer is not None:
-        argv += ["--meshcat-url", viewer.zmq_url]
+    if show:
+        argv += ["--serve-view"]
     process = spawn(argv, name="mujoco_sim")
-    if process.wait_for_line(READY_TEXT, timeout) is None:
+    ready = process.wait_for_line(READY_TEXT, timeout) is not None
+    viewer = Viewer.served_by(process, 1.0) if ready and show else None
+    if not ready or (show and viewer is None):
         process.stop()
-        if viewer is not None:
-            viewer.stop()
         tail = "\n".join(line.text for line in process.lines[-8:])
         raise ProcessStartError(
             f"The simulation did not start within {timeout:g} s.\n{tail}",

@@ -9,9 +9,13 @@ import signal
 import sys
 import time
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from ..config.simulation import SimulationSettings, load_simulation_settings
 from ..core.errors import CourseError
+
+if TYPE_CHECKING:
+    from ..viz.server import ThreadedServer
 
 __all__ = ["READY_TEXT", "main", "parse_args"]
 
@@ -34,6 +38,11 @@ def parse_args(argv: Sequence[str]) -> argparse.Namespace:
     parser.add_argument("--paused", action="store_true", help="start with the physics paused")
     parser.add_argument(
         "--meshcat-url", default=None, help="zmq url of a meshcat server to stream the 3D view to"
+    )
+    parser.add_argument(
+        "--serve-view",
+        action="store_true",
+        help="serve the 3D view from this process (prints zmq_url=... and web_url=...)",
     )
     parser.add_argument(
         "--duration",
@@ -74,10 +83,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     from .view.live import LiveView
     from .world.physics import Simulation
 
+    server = _serve_view() if args.serve_view else None
+    meshcat_url = server.zmq_url if server is not None else args.meshcat_url
     sim = Simulation(settings)
     context = rclpy.Context()
     rclpy.init(args=argv, context=context, signal_handler_options=SignalHandlerOptions.NO)
-    viewer = LiveView(args.meshcat_url, sim.model, sim.data) if args.meshcat_url else None
+    viewer = LiveView(meshcat_url, sim.model, sim.data) if meshcat_url else None
     bridge = Bridge(sim, context, viewer=viewer)
     bridge.paused = args.paused
     if args.paused:
@@ -118,6 +129,18 @@ def main(argv: Sequence[str] | None = None) -> int:
         bridge.close()
         if viewer is not None:
             viewer.close()
+        if server is not None:
+            server.stop()
         with contextlib.suppress(Exception):
             context.try_shutdown()
     return 0
+
+
+def _serve_view() -> ThreadedServer:
+    """Serve the 3D view from a thread of this process; say where, as the viewer server does."""
+    from ..viz.server import default_origins, serve_in_thread
+
+    server = serve_in_thread(default_origins())
+    print(f"zmq_url={server.zmq_url}", flush=True)
+    print(f"web_url={server.web_url}", flush=True)
+    return server

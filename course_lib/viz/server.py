@@ -3,6 +3,8 @@
 Run as `python -m course_lib.viz.server`; it prints `zmq_url=...` and `web_url=...` once it
 listens, then serves until it is stopped (the session stops it, or it dies with the kernel).
 meshcat-python's own `Visualizer()` would start a server that outlives a killed kernel.
+The simulation serves its own view in a thread (`serve_in_thread`, `python -m course_lib.sim
+--serve-view`): one process less per world, and the same two lines.
 
 Its command socket (meshcat's ZMQ, which takes any scene command, a JavaScript callback for
 the learner's browser included) is a Unix socket in the user's private runtime folder
@@ -24,9 +26,11 @@ websocket and gets no poses until it says `shown`).
 from __future__ import annotations
 
 import argparse
+import asyncio
 import os
 import signal
 import sys
+import threading
 from collections.abc import Iterable
 from pathlib import Path
 from urllib.parse import urlsplit
@@ -51,9 +55,12 @@ __all__ = [
     "POSES_COMMAND",
     "WATCHERS_COMMAND",
     "LocalBridge",
+    "ThreadedServer",
     "command_socket_url",
+    "default_origins",
     "main",
     "origin_allowed",
+    "serve_in_thread",
 ]
 
 ORIGINS_ENV = "COURSE_VIEWER_ORIGINS"
@@ -234,6 +241,56 @@ class LocalBridge(ZMQWebSocketBridge):
             websocket.write_message(self.latest_poses, binary=True)
 
 
+def default_origins() -> list[str]:
+    """Return the other origins whose pages may connect, from COURSE_VIEWER_ORIGINS."""
+    return [o for o in os.environ.get(ORIGINS_ENV, "").split(",") if o.strip()]
+
+
+class ThreadedServer:
+    """A LocalBridge serving from a thread of this process, with its own event loop."""
+
+    def __init__(self, bridge: LocalBridge, thread: threading.Thread) -> None:
+        self.bridge = bridge
+        self.thread = thread
+        self.zmq_url = bridge.zmq_url
+        self.web_url = bridge.web_url
+
+    def stop(self, timeout: float = 5.0) -> None:
+        """Stop serving and remove the command socket's file; idempotent."""
+        if self.thread.is_alive():
+            self.bridge.ioloop.add_callback(self.bridge.ioloop.stop)
+            self.thread.join(timeout)
+        Path(self.zmq_url.removeprefix("ipc://")).unlink(missing_ok=True)
+
+
+def serve_in_thread(origins: Iterable[str] = (), timeout: float = 10.0) -> ThreadedServer:
+    """Start a LocalBridge on 127.0.0.1 in a daemon thread; return once it listens."""
+    made: list[LocalBridge | BaseException] = []
+    listening = threading.Event()
+
+    def serve() -> None:
+        asyncio.set_event_loop(asyncio.new_event_loop())
+        try:
+            made.append(LocalBridge(origins=origins))
+        except BaseException as error:  # reported to the starting thread, raised there
+            made.append(error)
+            return
+        finally:
+            listening.set()
+        bridge = made[0]
+        assert isinstance(bridge, LocalBridge)
+        bridge.run()
+        bridge.ioloop.close(all_fds=True)
+
+    thread = threading.Thread(target=serve, name="meshcat-server", daemon=True)
+    thread.start()
+    if not listening.wait(timeout):
+        raise TimeoutError(f"the 3D view's server did not listen within {timeout:g} s")
+    if isinstance(made[0], BaseException):
+        raise made[0]
+    return ThreadedServer(made[0], thread)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Serve until SIGINT or SIGTERM."""
     parser = argparse.ArgumentParser(description="meshcat server for the course (127.0.0.1)")
@@ -242,7 +299,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--origin",
         action="append",
-        default=os.environ.get(ORIGINS_ENV, "").split(","),
+        default=default_origins(),
         help=f"another origin whose pages may connect (repeatable; also ${ORIGINS_ENV})",
     )
     args = parser.parse_args(argv)

@@ -1,5 +1,8 @@
 """The 3D view in a notebook cell: a meshcat server owned by the session, shown in an iframe.
 
+The server is the simulation process itself (`Viewer.served_by`, `sim.launcher`), or one of its
+own (`Viewer.start`).
+
 How the browser reaches the server (the iframe's address):
 - "proxy": through jupyter-server-proxy, `<base_url>proxy/<port>/static/`, so it works when
   JupyterLab is remote (JupyterHub, SSH, containers); the viewer's websocket goes the same way.
@@ -38,7 +41,7 @@ def viewer_url(port: int, mode: str | None = None, environ: dict[str, str] | Non
 
 
 class Viewer:
-    """A meshcat server child process and the iframe that shows it."""
+    """The process serving a meshcat view, and the iframe that shows it."""
 
     def __init__(self, process: Any, zmq_url: str, port: int) -> None:
         self.process = process
@@ -58,15 +61,23 @@ class Viewer:
 
         spawn = getattr(spawn, "spawn", spawn)
         process = spawn([sys.executable, "-m", "course_lib.viz.server"], name="meshcat")
-        line = process.wait_for_line(r"^web_url=", timeout)
-        zmq = next((ln.text for ln in process.lines if ln.text.startswith("zmq_url=")), None)
-        if line is None or zmq is None:
+        viewer = cls.served_by(process, timeout)
+        if viewer is None:
             process.stop()
             tail = "\n".join(ln.text for ln in process.lines[-5:])
             raise ProcessStartError(
                 f"The 3D viewer (meshcat) did not start.\n{tail}",
                 hint="`make doctor` checks that meshcat is installed.",
             )
+        return viewer
+
+    @classmethod
+    def served_by(cls, process: Any, timeout: float) -> Viewer | None:
+        """Return the view a process serves, from its `zmq_url=` and `web_url=` lines."""
+        line = process.wait_for_line(r"^web_url=", timeout)
+        zmq = next((ln.text for ln in process.lines if ln.text.startswith("zmq_url=")), None)
+        if line is None or zmq is None:
+            return None
         port = int(re.search(r":(\d+)/static/", line.text).group(1))  # type: ignore[union-attr]
         return cls(process, zmq.split("=", 1)[1], port)
 

@@ -28,7 +28,7 @@ def test_sigkilled_kernel_leaves_nothing_and_next_kernel_starts(start_kernel) ->
     kernel.ok("%ros2 param set /param_vel_node velocity 0.2")
     tree = process_tree(kernel.pid)
     running = describe(tree)
-    for part in ("course_lib.sim", "course_lib.viz.server", "param_vel"):
+    for part in ("course_lib.sim --serve-view", "param_vel"):
         assert part in running, f"{part} is not running:\n{running}"
     msg_id = kernel.client.execute("world.wait_sim_time(1e9, timeout=600)")  # a running cell
     assert msg_id

@@ -72,11 +72,18 @@ def test_dead_simulation_is_reported_and_one_call_restarts_it(start_kernel) -> N
     kernel.ok("world.drive(0.2)\nworld.wait_for_odom(lambda r: r.linear_mps > 0.15, 10)")
 
 
-def test_restart_after_dead_simulation_keeps_one_viewer(start_kernel) -> None:
+def test_restart_after_dead_simulation_serves_one_view(start_kernel) -> None:
+    """The view lives in the simulation's process: it dies with it, one serves it after."""
     kernel = start_kernel()
-    _port, sim = _started(kernel)
+    old_port, sim = _started(kernel)
     os.kill(sim, signal.SIGKILL)
     assert not wait_gone([sim], 5.0)
-    kernel.ok("world = start_world(show=True)", timeout=60)
-    servers = [p for p in process_tree(kernel.pid) if "viz.server" in describe([p])]
-    assert len(servers) == 1, f"one meshcat server expected:\n{describe(servers)}"
+    with pytest.raises(OSError):  # nothing else still serves the dead world's view
+        urllib.request.urlopen(f"http://127.0.0.1:{old_port}/static/", timeout=2)
+    port, new_sim = _started(kernel)
+    tree = process_tree(kernel.pid)
+    serving = [p for p in tree if "--serve-view" in describe([p])]
+    assert serving == [new_sim], describe(tree)
+    assert not [p for p in tree if "viz.server" in describe([p])], describe(tree)
+    with urllib.request.urlopen(f"http://127.0.0.1:{port}/static/", timeout=5) as page:
+        assert b"viewer.connect(base" in page.read()
