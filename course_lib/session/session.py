@@ -62,7 +62,8 @@ class SpinningNode:
 
     The one way the course builds a client node: the kernel's Session and the `ros2`
     command's DirectNode. No signal handlers (the kernel and the command keep theirs), no
-    parameter services.
+    parameter services; no `~/get_type_description` service unless asked (as ros2cli's
+    daemon: that service's messages import numpy, about 9 MiB in every process).
     """
 
     def __init__(
@@ -73,10 +74,12 @@ class SpinningNode:
         owner: str,
         thread_name: str,
         parameter_overrides: Sequence[Any] = (),
+        type_description_service: bool = False,
     ) -> None:
         """Start the node `name` in `domain_id`; `owner` names who it serves in the log."""
         import rclpy
         from rclpy.executors import SingleThreadedExecutor
+        from rclpy.parameter import Parameter
         from rclpy.signals import SignalHandlerOptions
 
         self.context = rclpy.Context()
@@ -90,7 +93,10 @@ class SpinningNode:
             name,
             context=self.context,
             start_parameter_services=False,
-            parameter_overrides=list(parameter_overrides),
+            parameter_overrides=[
+                *parameter_overrides,
+                Parameter("start_type_description_service", value=type_description_service),
+            ],
         )
         self.executor = SingleThreadedExecutor(context=self.context)
         self.executor.add_node(self.node)

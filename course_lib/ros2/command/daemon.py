@@ -250,7 +250,9 @@ def serve(*, idle_s: float | None = None) -> int:
         return 0
     path = str(daemon_socket(domain))
     try:
-        direct = DirectNode(domain_id=domain, node_name=daemon_node_name(domain))
+        direct = DirectNode(
+            domain_id=domain, node_name=daemon_node_name(domain), type_description_service=False
+        )
     except BaseException:
         server.close()
         os.unlink(path)

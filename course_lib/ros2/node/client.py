@@ -12,10 +12,6 @@ from typing import Any
 from rcl_interfaces.msg import Parameter, ParameterType
 from rcl_interfaces.msg import ParameterValue as ParameterValueMsg
 from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters, SetParameters
-from rclpy.action.graph import (
-    get_action_client_names_and_types_by_node,
-    get_action_server_names_and_types_by_node,
-)
 from rclpy.node import NodeNameNonExistentError
 from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
 
@@ -319,6 +315,12 @@ class RosClient:
         """Return the publishers, subscribers, services and actions of one node."""
         name = full_name.rsplit("/", 1)[-1]
         namespace = full_name.rsplit("/", 1)[0] or "/"
+        # rclpy.action imports its messages, and with them numpy (9 MiB): only when asked
+        from rclpy.action.graph import (
+            get_action_client_names_and_types_by_node,
+            get_action_server_names_and_types_by_node,
+        )
+
         node = self.node
         by_node = (name, namespace)
         return NodeInfo(

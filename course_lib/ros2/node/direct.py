@@ -1,7 +1,8 @@
 """A client node of one process, as ros2cli's DirectNode: `--no-daemon` commands and the daemon.
 
 It has its own rclpy context and a spin thread, no signal handlers and no parameter
-services; `use_sim_time` is set as `--use-sim-time` asks.
+services; `use_sim_time` is set as `--use-sim-time` asks. A command's node offers
+`~/get_type_description`, the daemon's does not (both as ros2cli's).
 """
 
 from __future__ import annotations
@@ -35,7 +36,12 @@ class DirectNode(SpinningNode):
     """The command's node in its own context, spinning in a background thread until close()."""
 
     def __init__(
-        self, *, domain_id: int, node_name: str | None = None, use_sim_time: bool = False
+        self,
+        *,
+        domain_id: int,
+        node_name: str | None = None,
+        use_sim_time: bool = False,
+        type_description_service: bool = True,
     ) -> None:
         from rclpy.parameter import Parameter
 
@@ -45,6 +51,7 @@ class DirectNode(SpinningNode):
             owner="the ros2 command's",
             thread_name="ros2cli-spin",
             parameter_overrides=[Parameter("use_sim_time", value=use_sim_time)],
+            type_description_service=type_description_service,
         )
 
     def close_at_exit(self) -> None:

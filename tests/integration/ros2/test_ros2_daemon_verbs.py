@@ -87,6 +87,16 @@ def test_daemon_node_is_named_as_ros2clis(env: dict[str, str]) -> None:
     assert re.search(rf"^/_ros2cli_daemon_{env['ROS_DOMAIN_ID']}_[0-9a-f]{{32}}$", out, re.M), out
 
 
+def test_the_daemon_offers_no_service_as_ros2clis(env: dict[str, str]) -> None:
+    """ros2cli's daemon starts neither parameter nor type description services."""
+    assert _ros2(env, "daemon start")[2] == 0
+    out, err, code = _ros2(env, "service list --include-hidden-services --no-daemon")
+    assert (err, code) == ("", 0)
+    assert "_ros2cli_daemon" not in out, out
+    out, _err, _code = _ros2(env, "node list -a")
+    assert "/_ros2cli_daemon_" in out, out  # the daemon was there to be asked
+
+
 def test_use_sim_time_runs_on_a_node_of_its_own(env: dict[str, str]) -> None:
     _ros2(env, "daemon stop")
     out, _err, code = _ros2(env, "topic list -s")
