@@ -66,6 +66,9 @@ $(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py course_li
 	$(PY) -m pip install --quiet --disable-pip-version-check -r environment.txt
 	$(PY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
 	$(PY) -c "from course_lib.tools.rosidl_import import install_pth; install_pth()"
+	@# jsonschema's optional IRI check (jupyter_events asks for jsonschema[format-nongpl]) builds
+	@# a grammar at import: 20 MiB and 1 s in every Jupyter server. Nothing here validates IRIs.
+	$(PY) -m pip uninstall --quiet --yes rfc3987-syntax
 	@touch $@
 
 # The venv's `ros2` starts Python once (course_lib/ros2/command/quick.py): after every pip
