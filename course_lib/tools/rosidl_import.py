@@ -80,11 +80,20 @@ def install_pth(site_packages: str | None = None) -> str:
 
     folder = Path(site_packages or sysconfig.get_paths()["purelib"])
     target = folder / PTH_NAME
-    # One line starting with "import" (site runs those); quiet if course_lib is gone.
-    line = (
-        "import sys; exec('try:\\n from course_lib.tools import rosidl_import\\n"
-        "except ImportError:\\n pass\\nelse:\\n rosidl_import.install()')\n"
+    # One line starting with "import" (site runs those). It loads this file by its path, not
+    # as course_lib's: importing course_lib at start-up would decide which course_lib every
+    # process of the environment runs (a copy run from its own folder would run this one).
+    code = (
+        "try:\n"
+        " import importlib.util as u\n"
+        f" s = u.spec_from_file_location('_course_rosidl_import', {str(Path(__file__))!r})\n"
+        " m = u.module_from_spec(s)\n"
+        " s.loader.exec_module(m)\n"
+        " m.install()\n"
+        "except OSError:\n"
+        " pass\n"
     )
+    line = f"import sys; exec({code!r})\n"
     temporary = target.with_suffix(".tmp")
     temporary.write_text(line, encoding="utf-8")
     temporary.replace(target)

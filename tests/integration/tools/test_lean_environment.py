@@ -8,6 +8,7 @@ import sys
 import sysconfig
 from pathlib import Path
 
+from course_lib.tools import rosidl_import
 from course_lib.tools.rosidl_import import PTH_NAME, install_pth
 
 GENERATOR_MODULES = ("lark", "em", "rosidl_generator_py.generate_py_impl", "rosidl_parser.parser")
@@ -54,7 +55,7 @@ except AttributeError as error:
 
 def test_setup_installed_the_finder_in_this_environment() -> None:
     installed = Path(sysconfig.get_paths()["purelib"]) / PTH_NAME
-    assert "from course_lib.tools import rosidl_import" in installed.read_text()
+    assert repr(str(Path(rosidl_import.__file__))) in installed.read_text()
 
 
 def test_the_pth_file_is_written_whole(tmp_path: Path) -> None:
