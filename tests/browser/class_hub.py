@@ -21,6 +21,7 @@ from typing import Any
 
 from course_lib.core.paths import REPO_ROOT
 from course_lib.core.ports import free_port
+from course_lib.core.waiting import wait_until
 from course_lib.processes.children import ChildProcess, spawn
 from course_lib.tools.testing import independent_env
 
@@ -156,7 +157,11 @@ class ClassHub:
             self.process.send_signal(signal.SIGINT)
             self.process.wait(120.0)
         self.process.stop(timeout=5.0)
-        left = {name: processes_of(name) for name in (*self.learners, *self.admins)}
+        accounts = (*self.learners, *self.admins)
+        # a process that has ended but is not reaped yet (no command line: its parent, ending
+        # too, has not waited for it) is not one that outlived the hub: give them a moment
+        wait_until(lambda: not any(processes_of(name) for name in accounts), 10.0)
+        left = {name: processes_of(name) for name in accounts}
         for name in (*self.learners, *self.admins):
             remove_account(name)
         shutil.rmtree(self._open_parent, ignore_errors=True)
