@@ -60,12 +60,14 @@ stop: ## Stop this user's course processes (labs, simulations, viewers, nodes, d
 
 # rosidl_import.pth: message imports skip rosidl_generator_py's code generator (7.5 MiB a
 # process; course_lib/tools/rosidl_import.py).
-$(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py course_lib/tools/rosidl_import.py
+$(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py course_lib/tools/rosidl_import.py course_lib/tools/kernelspec.py
 	@$(PYTHON) scripts/check_platform.py
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --disable-pip-version-check -r environment.txt
 	$(PY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
 	$(PY) -c "from course_lib.tools.rosidl_import import install_pth; install_pth()"
+	@# The python3 kernel without debugpy (8 MiB a kernel): course_lib/notebook/kernel_launcher.py
+	$(PY) -c "from course_lib.tools.kernelspec import install_kernelspec; install_kernelspec()"
 	@# jsonschema's optional IRI check (jupyter_events asks for jsonschema[format-nongpl]) builds
 	@# a grammar at import: 20 MiB and 1 s in every Jupyter server. Nothing here validates IRIs.
 	$(PY) -m pip uninstall --quiet --yes rfc3987-syntax

@@ -122,7 +122,7 @@ def _label(pid: int) -> str:
         return "gone"
     if "-m course_lib lab" in command:
         return "lab (machine service)"
-    if "ipykernel_launcher" in command:
+    if "kernel_launcher" in command:  # ipykernel_launcher, the course's kernel_launcher
         return "kernel"
     name = process_environ(pid).get(NAME_ENV)
     if name:

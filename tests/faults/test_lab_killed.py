@@ -51,7 +51,7 @@ def test_killed_lab_leaves_nothing_and_next_lab_says_so(private_tmp) -> None:
         assert STALE_TAB in rest(lab.base_url, lab.token, "GET", WORKSPACE)["data"]
         tree = [p.pid for p in psutil.Process(lab.process.pid).children(recursive=True)]
         running = describe(tree)
-        for part in ("jupyter-lab", "course_lib.ros2.command.daemon", "ipykernel"):
+        for part in ("jupyter-lab", "course_lib.ros2.command.daemon", "kernel_launcher"):
             assert part in running, f"{part} is not running:\n{running}"
         assert terminal.shell_pid in tree
         killed_at = time.monotonic()
