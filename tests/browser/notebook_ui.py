@@ -8,6 +8,13 @@ _BUSY_PROMPTS = (
     "() => ![...document.querySelectorAll('.jp-InputPrompt')]"
     ".some(p => p.textContent.includes('*'))"
 )
+_SHOWN = ".jp-NotebookPanel:not(.lm-mod-hidden)"  # the notebook of the tab in front
+# the visible notebook's code cells' prompts: "[ ]:" never ran, "[*]:" queued or running
+_PROMPTS = (
+    "[...document.querySelectorAll('.jp-NotebookPanel:not(.lm-mod-hidden) .jp-CodeCell "
+    ".jp-InputArea-prompt')].map(p => p.textContent.trim())"
+)
+_STARTED = f"() => {_PROMPTS}.some(t => t !== '[ ]:' && t !== '')"
 
 
 def run_all_cells(page) -> None:  # type: ignore[no-untyped-def]
@@ -16,13 +23,17 @@ def run_all_cells(page) -> None:  # type: ignore[no-untyped-def]
     A dialog instead (JupyterLab's "Select Kernel", asked when the notebook has no kernel) is a
     failure, never clicked away: a learner's Run All runs every cell without asking.
     """
-    idle = page.get_by_text("Python 3 (ipykernel) | Idle")
+    # This notebook's own kernel: the status bar may still show another tab's "Idle"
+    idle = page.locator(f"{_SHOWN} .jp-Notebook-ExecutionIndicator[data-status='idle']")
     dialog = page.locator(".jp-Dialog")
     idle.or_(dialog).first.wait_for(timeout=60_000)
     fail_on_dialog(page, "opening the notebook")
+    # the Run menu acts on the notebook that has the focus, as a learner's click gives it
+    page.locator(f"{_SHOWN} .jp-Cell").first.click()
     page.get_by_role("menuitem", name="Run", exact=True).click()
     page.get_by_role("menuitem", name="Run All Cells", exact=True).click()
     fail_on_dialog(page, "Run > Run All Cells")
+    page.wait_for_function(_STARTED, timeout=30_000)  # a cell is queued, running or done
 
 
 def fail_on_dialog(page, after: str) -> None:  # type: ignore[no-untyped-def]
@@ -39,6 +50,8 @@ def wait_all_ran(page, artifacts: Path) -> None:  # type: ignore[no-untyped-def]
     fail_on_dialog(page, "Run All")
     errors = page.locator('[data-mime-type="application/vnd.jupyter.error"]')
     assert errors.count() == 0, f"a cell failed: {errors.first.inner_text()[:2000]}"
+    never_ran = page.evaluate(f"() => {_PROMPTS}.filter(t => t === '[ ]:').length")
+    assert never_ran == 0, f"{never_ran} code cells never ran: {artifacts / 'page_done.png'}"
 
 
 def run_cell(page, source: str) -> None:  # type: ignore[no-untyped-def]
@@ -52,7 +65,10 @@ def run_cell(page, source: str) -> None:  # type: ignore[no-untyped-def]
 def open_notebook(page, base_url: str, path: str, token: str) -> None:  # type: ignore[no-untyped-def]
     """Open another notebook in a new tab of the same JupyterLab (the others stay open)."""
     page.goto(f"{base_url}/lab/tree/{path}?token={token}")
-    page.locator(".jp-NotebookPanel:visible .jp-CodeCell").first.wait_for(timeout=60_000)
+    # its tab in front, not the tab the reloaded page showed first
+    front = page.locator("#jp-main-dock-panel .lm-TabBar-tab.lm-mod-current")
+    front.filter(has_text=Path(path).name).wait_for(timeout=60_000)
+    page.locator(f"{_SHOWN} .jp-CodeCell").first.wait_for(timeout=60_000)
     idle = page.get_by_text("Python 3 (ipykernel) | Idle")
     choose = page.get_by_role("button", name="Select", exact=True)
     idle.or_(choose).first.wait_for(timeout=60_000)
