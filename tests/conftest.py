@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import os
 import signal
 import sys
@@ -88,6 +89,15 @@ def _sigint_left_alone() -> Iterator[None]:
     yield
     after = _sigint_disposition()
     assert after == before, f"this test changed the test process's SIGINT: {before} -> {after}"
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _garbage_of_the_module() -> Iterator[None]:
+    """Collect what a test module left unreferenced as it ends: an object it never closed (an
+    "unclosed socket") then fails that module's last test, not whichever test of another
+    module the garbage collector happens to run in."""
+    yield
+    gc.collect()
 
 
 @pytest.fixture(autouse=True)
