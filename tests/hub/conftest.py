@@ -23,5 +23,4 @@ def hub(tmp_path_factory: pytest.TempPathFactory, proxy: str) -> Iterator[ClassH
     try:
         yield class_hub
     finally:
-        class_hub.stop()
-        class_hub.listener.close()  # the progress service's port, held across restarts
+        class_hub.close()

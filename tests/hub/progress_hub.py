@@ -64,7 +64,7 @@ class ClassHub:
         self.proxy = proxy
         self.port, self.hub_port = free_port(), free_port()
         self.proxy_api_port = free_port()
-        self.listener = bind_service_socket()  # held until the test process ends
+        self.listener = bind_service_socket()  # held across restarts, until close()
         self.service_port = self.listener.getsockname()[1]
         self.service_token = secrets.token_hex(32)
         self.service: subprocess.Popen[bytes] | None = None
@@ -169,6 +169,11 @@ class ClassHub:
             self.process.kill()
             self.process.wait()
         self.process = None
+
+    def close(self) -> None:
+        """Stop the hub and free the progress service's port, held across restarts until now."""
+        self.stop()
+        self.listener.close()
 
     def log_tail(self, lines: int = 40) -> str:
         """Return the end of the hub's log (for failure messages)."""

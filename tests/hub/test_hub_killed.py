@@ -34,4 +34,4 @@ def test_a_killed_hub_leaves_no_proxy_or_service(
         for child in children:  # what outlived the hub, when the check failed: the test's own
             with contextlib.suppress(psutil.Error):
                 child.kill()
-        hub.stop()
+        hub.close()
