@@ -42,6 +42,11 @@ SLOW_NODE = textwrap.dedent(
 )
 
 
+def _publishes_events(session: Session, name: str) -> bool:
+    infos = session.node.get_publishers_info_by_topic("/parameter_events")
+    return any(info.node_name == name for info in infos)
+
+
 class Events:
     """Collect the /parameter_events changes of one node: (name, double value)."""
 
@@ -154,6 +159,9 @@ def test_a_restarted_node_gets_each_write_once(session: Session) -> None:
             )
             try:
                 assert client.services_ready("/again_node", timeout=15)
+                # its change event is volatile: heard only once its /parameter_events writer
+                # is known here (the services can be known a moment before it)
+                assert wait_until(lambda: _publishes_events(session, "again_node"), 10)
                 started = time.monotonic()
                 (result,) = client.set_parameters(
                     "/again_node", [("velocity", ParamValue.of(value))]
