@@ -18,6 +18,7 @@ from meshcat.commands import SetTransform
 from meshcat.path import Path as MeshcatPath
 from meshcat.servers.zmqserver import ZMQWebSocketBridge
 
+from course_lib.processes.domain import lease_domain
 from course_lib.sim.view.live import ServerWindow
 from course_lib.tools.testing import independent_env
 from course_lib.viz.server import ORIGINS_ENV, LocalBridge, origin_allowed
@@ -26,17 +27,13 @@ HUB = "https://hub.example.org"
 _EARLY: dict[int, bytes] = {}  # bytes read past a handshake's headers, by socket
 
 
-@pytest.fixture(scope="module")
-def server() -> Iterator[tuple[str, int]]:
-    """Run `python -m course_lib.viz.server` (one configured origin); yield (zmq url, port)."""
-    env = independent_env(**{ORIGINS_ENV: HUB})
+def _serve(argv: list[str], **extra: str) -> Iterator[tuple[str, int]]:
+    """Run a process that serves the view; yield (zmq url, web port) from its first lines."""
+    env = independent_env(**{ORIGINS_ENV: HUB}, **extra)
     process = subprocess.Popen(
-        [sys.executable, "-m", "course_lib.viz.server"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.DEVNULL,
-        text=True,
+        [sys.executable, *argv], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
         env=env,
-    )
+    )  # fmt: skip
     try:
         assert process.stdout is not None
         zmq_url = process.stdout.readline().strip().split("=", 1)[1]
@@ -47,6 +44,27 @@ def server() -> Iterator[tuple[str, int]]:
         process.wait(timeout=10)
         if process.stdout is not None:
             process.stdout.close()
+
+
+@pytest.fixture(scope="module")
+def server() -> Iterator[tuple[str, int]]:
+    """Run `python -m course_lib.viz.server` (one configured origin); yield (zmq url, port)."""
+    yield from _serve(["-m", "course_lib.viz.server"])
+
+
+@pytest.fixture(scope="module", params=["server alone", "in the simulation"])
+def any_server(request: pytest.FixtureRequest) -> Iterator[tuple[str, int]]:
+    """The view served either way: alone, or by the simulation (the lab's world)."""
+    if request.param == "server alone":
+        yield from _serve(["-m", "course_lib.viz.server"])
+        return
+    lease = lease_domain({})
+    try:
+        yield from _serve(
+            ["-m", "course_lib.sim", "--serve-view"], ROS_DOMAIN_ID=str(lease.domain_id)
+        )
+    finally:
+        lease.release()
 
 
 def _handshake(port: int, headers: dict[str, str]) -> tuple[int, socket.socket]:
@@ -104,26 +122,26 @@ def _first_frame(sock: socket.socket) -> bytes:
     return read(length)
 
 
-def test_the_viewer_page_own_origin_is_accepted(server: tuple[str, int]) -> None:
-    port = server[1]
+def test_the_viewer_page_own_origin_is_accepted(any_server: tuple[str, int]) -> None:
+    port = any_server[1]
     assert _connect(port, {"Origin": f"http://127.0.0.1:{port}"}) == 101
 
 
-def test_jupyter_proxy_origin_is_accepted(server: tuple[str, int]) -> None:
+def test_jupyter_proxy_origin_is_accepted(any_server: tuple[str, int]) -> None:
     # jupyter-server-proxy forwards the browser's Host and Origin: both name the Jupyter server.
     headers = {"Origin": "http://127.0.0.1:8888", "Host": "127.0.0.1:8888"}
-    assert _connect(server[1], headers) == 101
+    assert _connect(any_server[1], headers) == 101
 
 
-def test_configured_hub_origin_is_accepted(server: tuple[str, int]) -> None:
-    assert _connect(server[1], {"Origin": HUB}) == 101
+def test_configured_hub_origin_is_accepted(any_server: tuple[str, int]) -> None:
+    assert _connect(any_server[1], {"Origin": HUB}) == 101
 
 
 @pytest.mark.parametrize(
     "origin", ["http://evil.example", "http://127.0.0.1:1", "null", "https://hub.example.org.evil"]
 )
-def test_another_origin_is_refused(server: tuple[str, int], origin: str) -> None:
-    assert _connect(server[1], {"Origin": origin}) == 403
+def test_another_origin_is_refused(any_server: tuple[str, int], origin: str) -> None:
+    assert _connect(any_server[1], {"Origin": origin}) == 403
 
 
 def test_origin_rules() -> None:
