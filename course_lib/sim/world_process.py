@@ -37,9 +37,6 @@ def parse_args(argv: Sequence[str]) -> argparse.Namespace:
     )
     parser.add_argument("--paused", action="store_true", help="start with the physics paused")
     parser.add_argument(
-        "--meshcat-url", default=None, help="zmq url of a meshcat server to stream the 3D view to"
-    )
-    parser.add_argument(
         "--serve-view",
         action="store_true",
         help="serve the 3D view from this process (prints zmq_url=... and web_url=...)",
@@ -84,11 +81,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     from .world.physics import Simulation
 
     server = _serve_view() if args.serve_view else None
-    meshcat_url = server.zmq_url if server is not None else args.meshcat_url
     sim = Simulation(settings)
     context = rclpy.Context()
     rclpy.init(args=argv, context=context, signal_handler_options=SignalHandlerOptions.NO)
-    viewer = LiveView(meshcat_url, sim.model, sim.data) if meshcat_url else None
+    viewer = LiveView(server.zmq_url, sim.model, sim.data) if server is not None else None
     bridge = Bridge(sim, context, viewer=viewer)
     bridge.paused = args.paused
     if args.paused:

@@ -7,6 +7,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from ..core.atomic_files import atomic_write
+
 __all__ = ["KERNEL_NAME", "LAUNCHER", "install_kernelspec", "kernelspec"]
 
 KERNEL_NAME = "python3"
@@ -26,10 +28,5 @@ def kernelspec() -> dict[str, Any]:
 
 def install_kernelspec(prefix: str | Path = sys.prefix) -> Path:
     """Write the spec over ipykernel's in `prefix` (pip writes its own at each install)."""
-    folder = Path(prefix) / "share" / "jupyter" / "kernels" / KERNEL_NAME
-    folder.mkdir(parents=True, exist_ok=True)
-    target = folder / "kernel.json"
-    temporary = target.with_suffix(".tmp")
-    temporary.write_text(json.dumps(kernelspec(), indent=1) + "\n", encoding="utf-8")
-    temporary.replace(target)
-    return target
+    target = Path(prefix) / "share" / "jupyter" / "kernels" / KERNEL_NAME / "kernel.json"
+    return atomic_write(target, json.dumps(kernelspec(), indent=1) + "\n")

@@ -78,6 +78,8 @@ def install_pth(site_packages: str | None = None) -> str:
     import sysconfig
     from pathlib import Path
 
+    from course_lib.core.atomic_files import atomic_write  # setup only: never at start-up
+
     folder = Path(site_packages or sysconfig.get_paths()["purelib"])
     target = folder / PTH_NAME
     # One line starting with "import" (site runs those). It loads this file by its path, not
@@ -93,8 +95,4 @@ def install_pth(site_packages: str | None = None) -> str:
         "except OSError:\n"
         " pass\n"
     )
-    line = f"import sys; exec({code!r})\n"
-    temporary = target.with_suffix(".tmp")
-    temporary.write_text(line, encoding="utf-8")
-    temporary.replace(target)
-    return str(target)
+    return str(atomic_write(target, f"import sys; exec({code!r})\n"))

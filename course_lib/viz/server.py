@@ -216,6 +216,10 @@ class LocalBridge(ZMQWebSocketBridge):
         self.tree = SceneTree()
         self.latest_poses: bytes | None = None
 
+    def remove_command_socket(self) -> None:
+        """Remove the command socket's file once the server has stopped."""
+        Path(self.zmq_url.removeprefix("ipc://")).unlink(missing_ok=True)
+
     def handle_zmq(self, frames: list[bytes]) -> None:
         """Serve the course's two commands (module docstring), meshcat's own otherwise."""
         command = frames[0]
@@ -260,7 +264,7 @@ class ThreadedServer:
         if self.thread.is_alive():
             self.bridge.ioloop.add_callback(self.bridge.ioloop.stop)
             self.thread.join(timeout)
-        Path(self.zmq_url.removeprefix("ipc://")).unlink(missing_ok=True)
+        self.bridge.remove_command_socket()
 
 
 def serve_in_thread(origins: Iterable[str] = (), timeout: float = 10.0) -> ThreadedServer:
@@ -315,7 +319,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         bridge.run()
     finally:
-        Path(bridge.zmq_url.removeprefix("ipc://")).unlink(missing_ok=True)
+        bridge.remove_command_socket()
     return 0
 
 

@@ -1,7 +1,6 @@
 """The 3D view in a notebook cell: a meshcat server owned by the session, shown in an iframe.
 
-The server is the simulation process itself (`Viewer.served_by`, `sim.launcher`), or one of its
-own (`Viewer.start`).
+The server is the simulation process itself (`Viewer.served_by`, `sim.launcher`).
 
 How the browser reaches the server (the iframe's address):
 - "proxy": through jupyter-server-proxy, `<base_url>proxy/<port>/static/`, so it works when
@@ -20,7 +19,6 @@ import os
 import re
 from typing import Any
 
-from ..core.errors import ProcessStartError
 from ..core.live_outputs import LIVE_MARK
 from ..core.server_urls import jupyter_base_url
 
@@ -47,29 +45,6 @@ class Viewer:
         self.process = process
         self.zmq_url = zmq_url
         self.port = port
-
-    @classmethod
-    def start(cls, spawn: Any, timeout: float = 10.0) -> Viewer:
-        """Start a meshcat server bound to 127.0.0.1 on free ports.
-
-        Args:
-            spawn: how to start a child, `spawn(argv, name=...)`: a session's `spawn` (the
-                kernel owns the viewer) or the lab's (the lab owns it); a session works too.
-            timeout: seconds to wait for the server's addresses.
-        """
-        import sys
-
-        spawn = getattr(spawn, "spawn", spawn)
-        process = spawn([sys.executable, "-m", "course_lib.viz.server"], name="meshcat")
-        viewer = cls.served_by(process, timeout)
-        if viewer is None:
-            process.stop()
-            tail = "\n".join(ln.text for ln in process.lines[-5:])
-            raise ProcessStartError(
-                f"The 3D viewer (meshcat) did not start.\n{tail}",
-                hint="`make doctor` checks that meshcat is installed.",
-            )
-        return viewer
 
     @classmethod
     def served_by(cls, process: Any, timeout: float) -> Viewer | None:

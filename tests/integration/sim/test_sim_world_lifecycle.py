@@ -43,11 +43,14 @@ def test_viewer_server_is_gone_after_the_session_closes() -> None:
         world = start_world(own, show=True)
         port = world.viewer.port
         assert _serves_viewer(port)
+        command_socket = Path(world.viewer.zmq_url.removeprefix("ipc://"))
+        assert command_socket.exists()
         processes = [world.process, world.viewer.process]
     finally:
         own.close()
     assert not any(p.alive for p in processes)
     assert not _serves_viewer(port)
+    assert not command_socket.exists()  # the simulation removed its view's socket file
 
 
 OWNER = """
