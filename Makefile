@@ -58,14 +58,14 @@ doctor:  ## Check the install works (rclpy, tf2_msgs, the camera), say what is s
 stop: ## Stop this user's course processes (labs, simulations, viewers, nodes, daemons)
 	$(PY) -m course_lib stop
 
-# rosidl_import.pth: message imports skip rosidl_generator_py's code generator (7.5 MiB a
-# process; course_lib/tools/rosidl_import.py).
-$(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py course_lib/tools/rosidl_import.py course_lib/tools/kernelspec.py
+# slim_imports.pth: rosidl_generator_py and meshcat load without their heavy __init__ (7.5 and
+# 6 MiB a process; course_lib/tools/slim_imports.py).
+$(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py course_lib/tools/slim_imports.py course_lib/tools/kernelspec.py
 	@$(PYTHON) scripts/check_platform.py
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --disable-pip-version-check -r environment.txt
 	$(PY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
-	$(PY) -c "from course_lib.tools.rosidl_import import install_pth; install_pth()"
+	$(PY) -c "from course_lib.tools.slim_imports import install_pth; install_pth()"
 	@# The python3 kernel without debugpy (8 MiB a kernel): course_lib/notebook/kernel_launcher.py
 	$(PY) -c "from course_lib.tools.kernelspec import install_kernelspec; install_kernelspec()"
 	@# jsonschema's optional IRI check (jupyter_events asks for jsonschema[format-nongpl]) builds

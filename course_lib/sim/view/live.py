@@ -12,16 +12,17 @@ import contextlib
 import time
 from typing import Any
 
-import meshcat
 import mujoco
 import numpy as np
 import umsgpack
 import zmq
+from meshcat.commands import Delete
+from meshcat.path import Path
 
-from ...viz.scene import body_paths, camera_commands, moving_bodies, scene_commands
+from ...viz.scene import ROOT, body_paths, camera_commands, moving_bodies, scene_commands
 from ...viz.server import POSES_COMMAND, WATCHERS_COMMAND
 from ..world.frames import robot_frames
-from .tf_frames import TfView
+from .tf_frames import TF_ROOT, TfView
 
 __all__ = ["LiveView", "ServerWindow"]
 
@@ -32,7 +33,7 @@ _FLOAT32_ARRAY = 0x17  # the msgpack extension meshcat's browser side reads as a
 
 
 class ServerWindow:
-    """The zmq side of a meshcat server, with timeouts (a `window` for meshcat.Visualizer).
+    """The zmq side of a meshcat server, with timeouts.
 
     meshcat's own ViewerWindow blocks for ever on a server that stopped answering, prints in
     its constructor, and offers no public way to set socket options; this one owns its socket
@@ -79,7 +80,6 @@ class LiveView:
         self.zmq_url = zmq_url
         self.probe_period_s = probe_period_s
         self.window = ServerWindow(zmq_url)
-        self.visualizer = meshcat.Visualizer(window=self.window)
         paths = body_paths(model)
         self._moving = moving_bodies(model)
         self.updates = 0  # frames sent
@@ -93,9 +93,9 @@ class LiveView:
         self._paths = [paths[b].lower() for b in self._moving] + [
             path.lower() for path, _ in self.frames.update_poses(data)
         ]
-        self.visualizer["mujoco"].delete()
-        self.visualizer["tf"].delete()
         for command in [
+            Delete(Path(ROOT)),  # what an earlier world of this server drew
+            Delete(Path(TF_ROOT)),
             *scene_commands(model, data),
             *self.frames.draw_commands(),
             *self.frames.update_commands(data),

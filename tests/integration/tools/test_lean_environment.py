@@ -8,8 +8,8 @@ import sys
 import sysconfig
 from pathlib import Path
 
-from course_lib.tools import rosidl_import
-from course_lib.tools.rosidl_import import PTH_NAME, install_pth
+from course_lib.tools import slim_imports
+from course_lib.tools.slim_imports import PTH_NAME, install_pth
 
 GENERATOR_MODULES = ("lark", "em", "rosidl_generator_py.generate_py_impl", "rosidl_parser.parser")
 
@@ -53,15 +53,89 @@ except AttributeError as error:
     assert _run(program) == "module 'rosidl_generator_py' has no attribute 'no_such_name'\n"
 
 
+def test_the_simulations_view_never_loads_ipython_or_pillow() -> None:
+    """meshcat's __init__ imports its notebook visualizer: IPython and Pillow, 6 MiB."""
+    program = """
+import json, sys, mujoco
+from course_lib.sim.view.live import LiveView
+from course_lib.sim.world.model import build_model
+from course_lib.viz.server import serve_in_thread
+server = serve_in_thread([])
+model = build_model()
+data = mujoco.MjData(model)
+view = LiveView(server.zmq_url, model, data)
+assert view.update(data)
+view.close()
+server.stop()
+print(json.dumps(sorted({m.split(".")[0] for m in sys.modules} & {"IPython", "PIL"})))
+"""
+    assert json.loads(_run(program)) == []
+
+
+def test_meshcat_still_binds_every_name_of_its_init() -> None:
+    program = """
+import os, meshcat
+from meshcat import Visualizer
+from meshcat.visualizer import Visualizer as same
+assert Visualizer is same and meshcat.Visualizer is same
+assert meshcat.geometry.Box and meshcat.transformations.identity_matrix().shape == (4, 4)
+assert meshcat.commands and meshcat.servers and meshcat.animation and meshcat.visualizer
+assert os.path.isfile(os.path.join(meshcat.viewer_assets_path(), "dist", "main.min.js"))
+try:
+    meshcat.no_such_name
+except AttributeError as error:
+    print(error)
+"""
+    assert _run(program) == "module 'meshcat' has no attribute 'no_such_name'\n"
+
+
+def test_an_interface_package_loads_only_the_interfaces_used() -> None:
+    program = """
+import json, sys
+from geometry_msgs.msg import Twist
+import geometry_msgs.msg as package
+Twist(linear=package.Vector3(x=0.2))
+loaded = sorted(m for m in sys.modules if m.startswith("geometry_msgs.msg."))
+names = [n for n in dir(package) if not n.startswith("_")]
+print(json.dumps([loaded, "PoseWithCovariance" in names, len(names), "numpy" in sys.modules]))
+"""
+    loaded, listed, count, numpy = json.loads(_run(program))
+    assert loaded == ["geometry_msgs.msg._twist", "geometry_msgs.msg._vector3"]
+    assert listed and count == 32  # dir() still lists every message of the package
+    assert not numpy  # only the covariance messages need it
+
+
+def test_an_interface_package_binds_every_name_as_its_generated_init() -> None:
+    program = """
+from geometry_msgs.msg import *
+import geometry_msgs.msg, rosidl_adapter.msg
+from geometry_msgs.msg._pose_with_covariance import PoseWithCovariance as same
+assert PoseWithCovariance is same and geometry_msgs.msg.Twist is Twist
+assert "_twist" not in dir()  # a star import binds the messages, not their modules
+assert rosidl_adapter.msg.convert_msg_to_idl  # an __init__ of its own runs as written
+try:
+    geometry_msgs.msg.NoSuchMessage
+except AttributeError as error:
+    print(error)
+"""
+    assert _run(program) == "module 'geometry_msgs.msg' has no attribute 'NoSuchMessage'\n"
+
+
 def test_setup_installed_the_finder_in_this_environment() -> None:
     installed = Path(sysconfig.get_paths()["purelib"]) / PTH_NAME
-    assert repr(str(Path(rosidl_import.__file__))) in installed.read_text()
+    assert repr(str(Path(slim_imports.__file__))) in installed.read_text()
 
 
 def test_the_pth_file_is_written_whole(tmp_path: Path) -> None:
     written = Path(install_pth(str(tmp_path)))
     assert written == tmp_path / PTH_NAME
     assert written.read_text().count("\n") == 1  # site runs one line per import statement
+    assert [p.name for p in tmp_path.iterdir()] == [PTH_NAME]
+
+
+def test_setup_removes_the_finder_file_of_earlier_versions(tmp_path: Path) -> None:
+    (tmp_path / "rosidl_import.pth").write_text("import sys\n")
+    install_pth(str(tmp_path))
     assert [p.name for p in tmp_path.iterdir()] == [PTH_NAME]
 
 

@@ -1,0 +1,196 @@
+"""Packages without their heavy `__init__`: each process loads only the parts it uses.
+
+Some packages the course's processes import run far more at import than those processes use:
+- `rosidl_generator_py`, imported by every generated message module for
+  `import_type_support`, also imports its code generator (`generate_py`, through lark and
+  empy): about 7.5 MiB and 40 modules in every process that uses a message; only a build
+  ever calls it.
+- `meshcat`, whose geometry and commands the simulation sends to its 3D view, also imports
+  its notebook visualizer, hence IPython and Pillow: about 6 MiB and 115 modules in the
+  simulation, which never uses them.
+- every generated interface package (`geometry_msgs.msg`, `std_srvs.srv`, ...) imports all
+  its interfaces; a few have fixed-size arrays, which import numpy: `param_vel`, which
+  publishes a Twist, loaded numpy (6.5 MiB) for geometry_msgs' covariance messages.
+
+A finder installed at interpreter start-up (a `.pth` file that `make setup` writes into the
+environment, `install_pth`) loads these packages without running their `__init__`; each name
+the `__init__` would have bound is imported on first use (PEP 562 `__getattr__`), so
+`from rosidl_generator_py import generate_py` (a colcon build), `meshcat.Visualizer` (a
+notebook) and `from geometry_msgs.msg import *` work as before. An interface package is
+recognised by its `__init__`, which rosidl generates: only `from <package>._<module> import
+<Name>  # noqa: F401` lines; any other `__init__` runs as written.
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.machinery
+import os
+import sys
+from types import ModuleType
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # typing's and re's imports would cost every start of the environment
+    from collections.abc import Callable
+
+    _Binding = tuple[str, str | None] | Callable[[], str]
+
+__all__ = ["PTH_NAME", "SLIM_PACKAGES", "install", "install_pth"]
+
+# After ros_wheels_bootstrapper.pth ("s" sorts after "r"), so the bootstrapper's re-execution
+# happens before this module is imported, not after.
+PTH_NAME = "slim_imports.pth"
+_OLD_PTH_NAMES = ("rosidl_import.pth",)  # written by earlier versions of `make setup`
+
+
+def _meshcat_viewer_assets_path() -> str:
+    package = sys.modules["meshcat"]
+    return os.path.join(os.path.dirname(package.__file__ or ""), "viewer")
+
+
+# Package -> {name its __init__ binds: (submodule, attribute of it, or None for the submodule)}.
+# A value that is a callable is bound as is (a function the __init__ itself defines).
+SLIM_PACKAGES: dict[str, dict[str, _Binding]] = {
+    "rosidl_generator_py": {
+        "import_type_support": ("import_type_support_impl", "import_type_support"),
+        "generate_py": ("generate_py_impl", "generate_py"),
+    },
+    "meshcat": {
+        "commands": ("commands", None),
+        "geometry": ("geometry", None),
+        "visualizer": ("visualizer", None),
+        "servers": ("servers", None),
+        "transformations": ("transformations", None),
+        "animation": ("animation", None),
+        "Visualizer": ("visualizer", "Visualizer"),
+        "viewer_assets_path": _meshcat_viewer_assets_path,
+    },
+}
+# The names each package's own __init__ lists in __all__ (rosidl_generator_py lists
+# generate_py only when its generator imports; it does here, with the build wheels).
+_ALL = {"rosidl_generator_py": ["import_type_support", "generate_py"]}
+
+
+_INTERFACE_KINDS = ("msg", "srv", "action")
+_GENERATED_SUFFIX = "  # noqa: F401"
+
+
+def _interface_bindings(fullname: str, init_file: str) -> dict[str, _Binding] | None:
+    """The names a generated interface package's `__init__` binds, or None if not generated."""
+    try:
+        with open(init_file, encoding="utf-8") as init:
+            lines = [line.rstrip("\n") for line in init if line.strip()]
+    except OSError:
+        return None
+    bindings: dict[str, _Binding] = {}
+    for line in lines:  # from <fullname>._<module> import <Name>, then the suffix
+        words = line.removesuffix(_GENERATED_SUFFIX).split(" ")
+        if (
+            not line.endswith(_GENERATED_SUFFIX)
+            or len(words) != 4
+            or words[::2] != ["from", "import"]
+        ):
+            return None
+        package, _, module = words[1].rpartition(".")
+        if package != fullname or not module.startswith("_") or not words[3].isidentifier():
+            return None
+        bindings[words[3]] = (module, words[3])
+    return bindings or None
+
+
+def _lazy_attribute(package: str, bindings: dict[str, _Binding]) -> Callable[[str], object]:
+    def __getattr__(name: str) -> object:
+        binding = bindings.get(name)
+        if binding is None:
+            raise AttributeError(f"module {package!r} has no attribute {name!r}")
+        if callable(binding):
+            value: object = binding
+        else:
+            submodule, attribute = binding
+            try:
+                module = importlib.import_module(f"{package}.{submodule}")
+            except ImportError as error:  # as the package's own __init__: no module, no name
+                raise AttributeError(f"module {package!r} has no attribute {name!r}") from error
+            value = module if attribute is None else getattr(module, attribute)
+        setattr(sys.modules[package], name, value)  # found once; plain attribute from now on
+        return value
+
+    return __getattr__
+
+
+class _PackageLoader:
+    """Create the package from its real spec; bind its names lazily instead of its __init__."""
+
+    def __init__(self, bindings: dict[str, _Binding], all_names: list[str] | None) -> None:
+        self._bindings = bindings
+        self._all = all_names
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType:
+        module = ModuleType(spec.name)
+        module.__spec__ = spec
+        module.__path__ = list(spec.submodule_search_locations or [])
+        module.__file__ = spec.origin
+        return module
+
+    def exec_module(self, module: ModuleType) -> None:
+        if self._all is not None:
+            module.__all__ = list(self._all)
+        module.__getattr__ = _lazy_attribute(module.__name__, self._bindings)  # type: ignore[method-assign]
+        names = sorted(self._bindings)
+        module.__dir__ = lambda: sorted({*vars(module), *names})  # type: ignore[method-assign]
+
+
+class _Finder:
+    """Find the packages as the path finder does, and give them the loader above."""
+
+    def find_spec(
+        self, fullname: str, path: object = None, target: object = None
+    ) -> importlib.machinery.ModuleSpec | None:
+        interface = fullname.count(".") == 1 and fullname.rpartition(".")[2] in _INTERFACE_KINDS
+        if not interface and fullname not in SLIM_PACKAGES:
+            return None
+        spec = importlib.machinery.PathFinder.find_spec(fullname, path)
+        if spec is None or not spec.submodule_search_locations:
+            return None  # not installed here: the import fails as it would without us
+        if interface:
+            bindings = _interface_bindings(fullname, spec.origin or "")
+            if bindings is None:
+                return None  # not generated by rosidl: its __init__ runs as written
+            # A star import of the generated __init__ binds every interface, as here.
+            spec.loader = _PackageLoader(bindings, sorted(bindings))
+        else:
+            spec.loader = _PackageLoader(SLIM_PACKAGES[fullname], _ALL.get(fullname))
+        return spec
+
+
+def install() -> None:
+    """Put the finder first on `sys.meta_path` (once)."""
+    if any(isinstance(f, _Finder) for f in sys.meta_path):
+        return
+    sys.meta_path.insert(0, _Finder())
+
+
+def install_pth(site_packages: str | None = None) -> str:
+    """Write the `.pth` file that installs the finder in every start of this environment."""
+    import sysconfig
+    from pathlib import Path
+
+    from course_lib.core.atomic_files import atomic_write  # setup only: never at start-up
+
+    folder = Path(site_packages or sysconfig.get_paths()["purelib"])
+    for old in _OLD_PTH_NAMES:
+        (folder / old).unlink(missing_ok=True)
+    # One line starting with "import" (site runs those). It loads this file by its path, not
+    # as course_lib's: importing course_lib at start-up would decide which course_lib every
+    # process of the environment runs (a copy run from its own folder would run this one).
+    code = (
+        "try:\n"
+        " import importlib.util as u\n"
+        f" s = u.spec_from_file_location('_course_slim_imports', {str(Path(__file__))!r})\n"
+        " m = u.module_from_spec(s)\n"
+        " s.loader.exec_module(m)\n"
+        " m.install()\n"
+        "except OSError:\n"
+        " pass\n"
+    )
+    return str(atomic_write(folder / PTH_NAME, f"import sys; exec({code!r})\n"))
