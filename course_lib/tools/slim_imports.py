@@ -28,9 +28,9 @@ import importlib.machinery
 import os
 import sys
 from types import ModuleType
-from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:  # typing's and re's imports would cost every start of the environment
+TYPE_CHECKING = False  # typing is not imported: this module runs in every start of Python
+if TYPE_CHECKING:
     from collections.abc import Callable
 
     _Binding = tuple[str, str | None] | Callable[[], str]

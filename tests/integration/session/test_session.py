@@ -17,6 +17,7 @@ from course_lib.core.errors import ExecutableNotFoundError, PackageNotFoundError
 from course_lib.core.paths import ROSJECT_DIR
 from course_lib.core.procfs import pid_alive
 from course_lib.processes.children import OWNER_ENV, SPAWNED_ENV, command_tag, reap_orphans
+from course_lib.ros2.node.client import RosClient
 from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
@@ -24,11 +25,11 @@ pytestmark = pytest.mark.ros
 PARAMS_FILE = ROSJECT_DIR / "parameter_tests" / "config" / "param_vel_node.yaml"
 
 
-def velocity_of(session: Session, node: str = "/param_vel_node", timeout: float = 5.0) -> float:
-    client = AsyncParameterClient(session.node, node)
-    assert client.wait_for_services(timeout_sec=timeout), f"{node} never answered"
-    result = session.wait_future(client.get_parameters(["velocity"]), timeout)
-    return result.values[0].double_value
+def velocity_of(session: Session, node: str = "/param_vel_node") -> float:
+    """Read the node's velocity as `ros2 param get` does (a read is re-sent until answered:
+    a node that has just started may drop the reply to a client it does not know yet)."""
+    (value,) = RosClient(session.node, session.wait_future).get_parameters(node, ["velocity"])
+    return float(value.value)
 
 
 def wait_gone(pids: list[int], timeout: float) -> list[int]:

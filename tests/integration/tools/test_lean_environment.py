@@ -121,6 +121,11 @@ except AttributeError as error:
     assert _run(program) == "module 'geometry_msgs.msg' has no attribute 'NoSuchMessage'\n"
 
 
+def test_the_finder_adds_no_import_to_the_start_of_python() -> None:
+    """It runs in every start of the environment (every `ros2` command, every node)."""
+    assert _run("import sys; print('typing' in sys.modules)") == "False\n"
+
+
 def test_setup_installed_the_finder_in_this_environment() -> None:
     installed = Path(sysconfig.get_paths()["purelib"]) / PTH_NAME
     assert repr(str(Path(slim_imports.__file__))) in installed.read_text()
