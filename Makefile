@@ -58,8 +58,8 @@ doctor:  ## Check the install works (rclpy, tf2_msgs, the camera), say what is s
 stop: ## Stop this user's course processes (labs, simulations, viewers, nodes, daemons)
 	$(PY) -m course_lib stop
 
-# slim_imports.pth: rosidl_generator_py and meshcat load without their heavy __init__ (7.5 and
-# 6 MiB a process; course_lib/tools/slim_imports.py).
+# slim_imports.pth: packages load without the parts of their __init__ a process never uses
+# (a message generator, IPython, httpx's CLI, every message of a package; course_lib/tools/slim_imports.py).
 $(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py course_lib/tools/slim_imports.py course_lib/tools/kernelspec.py
 	@$(PYTHON) scripts/check_platform.py
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)

@@ -8,6 +8,9 @@ Some packages the course's processes import run far more at import than those pr
 - `meshcat`, whose geometry and commands the simulation sends to its 3D view, also imports
   its notebook visualizer, hence IPython and Pillow: about 6 MiB and 115 modules in the
   simulation, which never uses them.
+- `httpx`, which JupyterLab imports for its extension manager, also imports its command-line
+  client (`httpx._main`: click, rich, pygments) when they are installed (import-linter brings
+  them): 4.3 MiB and 94 modules in every Jupyter server.
 - every generated interface package (`geometry_msgs.msg`, `std_srvs.srv`, ...) imports all
   its interfaces; a few have fixed-size arrays, which import numpy: `param_vel`, which
   publishes a Twist, loaded numpy (6.5 MiB) for geometry_msgs' covariance messages.
@@ -35,7 +38,7 @@ if TYPE_CHECKING:
 
     _Binding = tuple[str, str | None] | Callable[[], str]
 
-__all__ = ["PTH_NAME", "SLIM_PACKAGES", "install", "install_pth"]
+__all__ = ["DEFERRED_MODULES", "PTH_NAME", "SLIM_PACKAGES", "install", "install_pth"]
 
 # After ros_wheels_bootstrapper.pth ("s" sorts after "r"), so the bootstrapper's re-execution
 # happens before this module is imported, not after.
@@ -66,6 +69,10 @@ SLIM_PACKAGES: dict[str, dict[str, _Binding]] = {
         "viewer_assets_path": _meshcat_viewer_assets_path,
     },
 }
+# Module -> the one function its package takes from it: the module (and what it imports) is
+# loaded when that function is first called.
+DEFERRED_MODULES = {"httpx._main": "main"}
+
 # The names each package's own __init__ lists in __all__ (rosidl_generator_py lists
 # generate_py only when its generator imports; it does here, with the build wheels).
 _ALL = {"rosidl_generator_py": ["import_type_support", "generate_py"]}
@@ -140,12 +147,45 @@ class _PackageLoader:
         module.__dir__ = lambda: sorted({*vars(module), *names})  # type: ignore[method-assign]
 
 
+class _DeferredLoader:
+    """Stand in for a module with its one function; load the real module when it is called."""
+
+    def __init__(self, real: importlib.machinery.ModuleSpec, function: str) -> None:
+        self._real = real
+        self._function = function
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> None:
+        return None  # the default module
+
+    def exec_module(self, module: ModuleType) -> None:
+        real, function = self._real, self._function
+
+        def deferred(*args: object, **kwargs: object) -> object:
+            import importlib.util
+
+            loaded = importlib.util.module_from_spec(real)
+            sys.modules[real.name] = loaded
+            assert real.loader is not None
+            real.loader.exec_module(loaded)
+            return getattr(loaded, function)(*args, **kwargs)
+
+        deferred.__name__ = deferred.__qualname__ = function
+        setattr(module, function, deferred)
+
+
 class _Finder:
     """Find the packages as the path finder does, and give them the loader above."""
 
     def find_spec(
         self, fullname: str, path: object = None, target: object = None
     ) -> importlib.machinery.ModuleSpec | None:
+        if fullname in DEFERRED_MODULES:
+            real = importlib.machinery.PathFinder.find_spec(fullname, path)
+            if real is None:
+                return None
+            return importlib.machinery.ModuleSpec(
+                fullname, _DeferredLoader(real, DEFERRED_MODULES[fullname]), origin=real.origin
+            )
         interface = fullname.count(".") == 1 and fullname.rpartition(".")[2] in _INTERFACE_KINDS
         if not interface and fullname not in SLIM_PACKAGES:
             return None

@@ -121,6 +121,25 @@ except AttributeError as error:
     assert _run(program) == "module 'geometry_msgs.msg' has no attribute 'NoSuchMessage'\n"
 
 
+def test_jupyterlab_never_loads_httpxs_command_line_client() -> None:
+    """JupyterLab's extension manager imports httpx, whose __init__ imports its CLI: 4 MiB."""
+    program = "import sys, jupyterlab.labapp; print(sorted({'rich', 'click'} & set(sys.modules)))"
+    assert _run(program) == "[]\n"
+
+
+def test_httpxs_command_line_client_still_runs() -> None:
+    program = """
+import sys, httpx
+sys.argv = ["httpx", "--help"]
+try:
+    httpx.main()
+except SystemExit as end:
+    print("exit", end.code)
+"""
+    printed = _run(program)
+    assert "Usage: httpx <URL> [OPTIONS]" in printed and printed.endswith("exit 0\n")
+
+
 def test_the_finder_adds_no_import_to_the_start_of_python() -> None:
     """It runs in every start of the environment (every `ros2` command, every node)."""
     assert _run("import sys; print('typing' in sys.modules)") == "False\n"
