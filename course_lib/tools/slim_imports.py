@@ -159,15 +159,18 @@ class _DeferredLoader:
 
     def exec_module(self, module: ModuleType) -> None:
         real, function = self._real, self._function
+        loaded: list[ModuleType] = []  # the real module, once a call has loaded it
 
         def deferred(*args: object, **kwargs: object) -> object:
-            import importlib.util
+            if not loaded:
+                import importlib.util
 
-            loaded = importlib.util.module_from_spec(real)
-            sys.modules[real.name] = loaded
-            assert real.loader is not None
-            real.loader.exec_module(loaded)
-            return getattr(loaded, function)(*args, **kwargs)
+                module = importlib.util.module_from_spec(real)
+                sys.modules[real.name] = module
+                assert real.loader is not None
+                real.loader.exec_module(module)
+                loaded.append(module)
+            return getattr(loaded[0], function)(*args, **kwargs)
 
         deferred.__name__ = deferred.__qualname__ = function
         setattr(module, function, deferred)

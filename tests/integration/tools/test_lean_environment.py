@@ -130,14 +130,19 @@ def test_jupyterlab_never_loads_httpxs_command_line_client() -> None:
 def test_httpxs_command_line_client_still_runs() -> None:
     program = """
 import sys, httpx
-sys.argv = ["httpx", "--help"]
-try:
-    httpx.main()
-except SystemExit as end:
-    print("exit", end.code)
+loaded = []
+for _ in range(2):
+    sys.argv = ["httpx", "--help"]
+    try:
+        httpx.main()
+    except SystemExit as end:
+        print("exit", end.code)
+    loaded.append(sys.modules["httpx._main"])
+print("loaded once:", loaded[0] is loaded[1])
 """
     printed = _run(program)
-    assert "Usage: httpx <URL> [OPTIONS]" in printed and printed.endswith("exit 0\n")
+    assert "Usage: httpx <URL> [OPTIONS]" in printed
+    assert printed.endswith("exit 0\nloaded once: True\n")
 
 
 def test_the_finder_adds_no_import_to_the_start_of_python() -> None:
