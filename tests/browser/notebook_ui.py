@@ -9,6 +9,8 @@ _BUSY_PROMPTS = (
     ".some(p => p.textContent.includes('*'))"
 )
 _SHOWN = ".jp-NotebookPanel:not(.lm-mod-hidden)"  # the notebook of the tab in front
+# that notebook's own kernel is idle (the status bar may still show another tab's "Idle")
+_SHOWN_IDLE = f"{_SHOWN} .jp-Notebook-ExecutionIndicator[data-status='idle']"
 # the visible notebook's code cells' prompts: "[ ]:" never ran, "[*]:" queued or running
 _PROMPTS = (
     "[...document.querySelectorAll('.jp-NotebookPanel:not(.lm-mod-hidden) .jp-CodeCell "
@@ -23,8 +25,7 @@ def run_all_cells(page) -> None:  # type: ignore[no-untyped-def]
     A dialog instead (JupyterLab's "Select Kernel", asked when the notebook has no kernel) is a
     failure, never clicked away: a learner's Run All runs every cell without asking.
     """
-    # This notebook's own kernel: the status bar may still show another tab's "Idle"
-    idle = page.locator(f"{_SHOWN} .jp-Notebook-ExecutionIndicator[data-status='idle']")
+    idle = page.locator(_SHOWN_IDLE)
     dialog = page.locator(".jp-Dialog")
     idle.or_(dialog).first.wait_for(timeout=60_000)
     fail_on_dialog(page, "opening the notebook")
@@ -69,7 +70,7 @@ def open_notebook(page, base_url: str, path: str, token: str) -> None:  # type: 
     front = page.locator("#jp-main-dock-panel .lm-TabBar-tab.lm-mod-current")
     front.filter(has_text=Path(path).name).wait_for(timeout=60_000)
     page.locator(f"{_SHOWN} .jp-CodeCell").first.wait_for(timeout=60_000)
-    idle = page.get_by_text("Python 3 (ipykernel) | Idle")
+    idle = page.locator(_SHOWN_IDLE)
     choose = page.get_by_role("button", name="Select", exact=True)
     idle.or_(choose).first.wait_for(timeout=60_000)
     if choose.is_visible():  # a slow kernel list makes JupyterLab ask; a learner picks Python 3

@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import ast
+import importlib.machinery
 import json
 import subprocess
 import sys
 import sysconfig
 from pathlib import Path
+
+import pytest
 
 from course_lib.tools import slim_imports
 from course_lib.tools.slim_imports import PTH_NAME, install_pth
@@ -70,6 +74,29 @@ server.stop()
 print(json.dumps(sorted({m.split(".")[0] for m in sys.modules} & {"IPython", "PIL"})))
 """
     assert json.loads(_run(program)) == []
+
+
+def _names_bound_by(init: Path) -> set[str]:
+    """The public names a package's own __init__ binds from its modules, or defines."""
+    names: set[str] = set()
+    body = list(ast.parse(init.read_text()).body)
+    while body:
+        node = body.pop()
+        if isinstance(node, ast.Try):
+            body += node.body  # what the package binds when its optional parts import
+        elif isinstance(node, ast.ImportFrom) and node.level == 1:  # from . / from .x import
+            names |= {alias.asname or alias.name for alias in node.names}
+        elif isinstance(node, ast.FunctionDef | ast.ClassDef):
+            names.add(node.name)
+    return {name for name in names if not name.startswith("_")}
+
+
+@pytest.mark.parametrize("package", sorted(slim_imports.SLIM_PACKAGES))
+def test_a_slim_package_binds_every_name_its_own_init_binds(package: str) -> None:
+    """Fails when an upgrade of the package binds a name the finder's table does not know."""
+    spec = importlib.machinery.PathFinder.find_spec(package)
+    assert spec is not None and spec.origin is not None
+    assert _names_bound_by(Path(spec.origin)) <= set(slim_imports.SLIM_PACKAGES[package])
 
 
 def test_meshcat_still_binds_every_name_of_its_init() -> None:

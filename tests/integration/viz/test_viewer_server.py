@@ -31,9 +31,12 @@ def _serve(argv: list[str], **extra: str) -> Iterator[tuple[str, int]]:
     """Run a process that serves the view; yield (zmq url, web port) from its first lines."""
     env = independent_env(**{ORIGINS_ENV: HUB}, **extra)
     process = subprocess.Popen(
-        [sys.executable, *argv], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
+        [sys.executable, *argv],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
         env=env,
-    )  # fmt: skip
+    )
     try:
         assert process.stdout is not None
         zmq_url = process.stdout.readline().strip().split("=", 1)[1]
