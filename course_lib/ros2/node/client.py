@@ -277,11 +277,11 @@ class RosClient:
                 view = self.graph_view()  # a participant unseen, or seen with nameless endpoints
                 partial = bool(view.missing_participants) or bool(view.unknown_endpoints)
                 if not partial or now - start >= INCOMPLETE_WAIT_S:
-                    return False
+                    return found()  # a last look: the node may have come with that view
             if self.graph_complete():
                 complete_since = now if complete_since is None else complete_since
                 if now - complete_since >= SETTLED_QUIET_S:
-                    return False  # the whole domain is known, and the node is not in it
+                    return found()  # the whole domain is known: the node is in it or not
             else:
                 complete_since = None
             time.sleep(_POLL_S)

@@ -171,6 +171,22 @@ def test_a_counting_client_answers_once_it_met_every_participant() -> None:
     assert alone.now == pytest.approx(0.1, abs=0.02)  # nothing else runs: quiet is enough
 
 
+def test_a_young_client_answers_only_from_a_view_that_held_still() -> None:
+    """A view taken while participants come and go can count them all with the node not seen
+    (here: one that has just left still counted for a moment). Four first calls at once, one
+    listed only its own topics; a young client now answers only from a view that held still."""
+    graph = Graph(
+        {
+            0.0: replace(EMPTY, missing_participants=1, endpoints=2),
+            0.15: replace(EMPTY, missing_participants=0, endpoints=4),  # the ghost's moment
+            0.19: replace(EMPTY, missing_participants=1, endpoints=2),  # its endpoints leave
+            0.4: replace(NODE, missing_participants=0, endpoints=5),
+        }
+    )
+    assert graph.settle(born=0.0).nodes == NODE.nodes
+    assert 0.5 <= graph.now <= 0.52
+
+
 def test_an_unseen_participant_holds_only_a_young_client_and_bounded() -> None:
     stuck = replace(NODE, missing_participants=1)  # e.g. a suspended process
     young = Graph({0.0: stuck})
