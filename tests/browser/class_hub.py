@@ -168,6 +168,32 @@ class ClassHub:
         return {name: found for name, found in left.items() if found}
 
 
+def stop_own_server(page: Any, hub_url: str) -> None:
+    """Press "Stop My Server" on the hub's home page as a learner does: again if the first
+    press came before the page's script had bound the button (it does nothing until then:
+    seen once on a busy host, no stop request in 30 s)."""
+    from playwright.sync_api import TimeoutError as PlaywrightTimeout
+
+    page.goto(f"{hub_url}/hub/home")
+    for _ in range(30):
+        page.locator("#stop").click()
+        try:
+            page.wait_for_function(_STOP_TAKEN, timeout=2_000)
+            return
+        except PlaywrightTimeout:
+            continue  # not bound yet: press again
+    raise AssertionError("the hub's home page never took the click on Stop My Server")
+
+
+# What the home page's click handler does at once (disables "My Server") and once the hub
+# has stopped the server (that button then says "Start My Server").
+_STOP_TAKEN = """() => {
+  const start = document.querySelector('#start');
+  if (start === null) return false;
+  return start.hasAttribute('disabled') || /Start My Server/.test(start.innerText);
+}"""
+
+
 def server_token(name: str) -> str:
     """Return the hub API token that `name`'s server and kernels hold (root reads it)."""
     for entry in _processes_of(name):

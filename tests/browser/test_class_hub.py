@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from class_hub import ClassHub, processes_of, server_token, uid_of
+from class_hub import ClassHub, processes_of, server_token, stop_own_server, uid_of
 from lab_server import ARTIFACTS
 from notebook_ui import add_cell, run_all_cells, run_cell, wait_all_ran
 from pixels import is_blank
@@ -174,8 +174,7 @@ def test_stopping_one_server_leaves_nothing_of_it_and_spares_the_other(
         bob.wait_for_url(f"**/user/{BOB}/lab**", timeout=180_000)
     assert wait_until(lambda: processes_of(BOB), 60.0), "Bob's server is not running"
     alice_before = processes_of(ALICE)
-    bob.goto(f"{hub.url}/hub/home")
-    bob.locator("#stop").click()
+    stop_own_server(bob, hub.url)
     left = lambda: not processes_of(BOB)  # noqa: E731
     assert wait_until(left, 30.0), f"Bob's processes outlived his server: {processes_of(BOB)}"
     assert set(processes_of(ALICE)) >= set(alice_before), "stopping Bob disturbed Alice"
