@@ -13,8 +13,11 @@ __all__ = ["pytest_argv", "run_tests"]
 
 
 def pytest_argv(extra: list[str]) -> list[str]:
-    """Return the pytest command line: tests/ and every notebook, two workers."""
-    workers = "2" if (os.cpu_count() or 1) >= 2 else "0"
+    """Return the pytest command line: tests/ and every notebook, one worker per core and one
+    more: the tests wait on real processes much of the time (2 workers left 2 cores 65% idle
+    outside the browser walks; 3 took the suite from 714-730 s to 538-589 s here)."""
+    cores = os.cpu_count() or 1
+    workers = str(cores + 1) if cores >= 2 else "0"
     notebooks = ["notebooks"] if any(NOTEBOOKS_DIR.glob("*.ipynb")) else []
     return [
         sys.executable,

@@ -104,5 +104,7 @@ class LabServer:
         return f"{self.base_url}/lab/tree/{path}?reset&token={self.token}"
 
     def stop(self) -> None:
-        """Stop JupyterLab like Ctrl-C (its kernels, terminals and their children go too)."""
+        """Stop JupyterLab like Ctrl-C (its kernels, terminals and their children go too); keep
+        what it printed in its folder (lab.log: what a failed test's reader looks at first)."""
         self.process.stop(timeout=15.0)
+        (self.folder / "lab.log").write_text(self.process.text(), encoding="utf-8")

@@ -125,7 +125,7 @@ def test_scan_sees_the_box(session: Session, fresh: World) -> None:
                 and m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 > after
                 and m
             ),
-            timeout=30.0,  # a best-effort subscription made now; the suite runs two workers
+            timeout=30.0,  # a best-effort subscription made now, on cores the suite keeps busy
         )
     except TimeoutError:
         last = latest()
