@@ -77,6 +77,18 @@ def open_notebook(page, base_url: str, path: str, token: str) -> None:  # type: 
         choose.click()
 
 
+def show_tab(page, name: str, timeout_ms: int = 90_000) -> None:  # type: ignore[no-untyped-def]
+    """Put the notebook `name` (opened, maybe behind a restored tab) in front, as a learner's
+    click on its tab does, and wait until its own kernel is idle."""
+    tabs = page.locator("#jp-main-dock-panel .lm-TabBar-tab")
+    tab = tabs.filter(has_text=name).first
+    tab.wait_for(timeout=60_000)
+    tab.click()
+    tabs.and_(page.locator(".lm-mod-current")).filter(has_text=name).wait_for(timeout=30_000)
+    page.locator(f"{_SHOWN} .jp-CodeCell").first.wait_for(timeout=60_000)
+    page.locator(_SHOWN_IDLE).or_(page.locator(".jp-Dialog")).first.wait_for(timeout=timeout_ms)
+
+
 def add_cell(page, code: str) -> str:  # type: ignore[no-untyped-def]
     """Add a cell at the end of the visible notebook, run it, return its output's text."""
     cells = page.locator(".jp-NotebookPanel:visible .jp-CodeCell")
