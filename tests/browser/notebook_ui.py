@@ -66,25 +66,19 @@ def run_cell(page, source: str) -> None:  # type: ignore[no-untyped-def]
 def open_notebook(page, base_url: str, path: str, token: str) -> None:  # type: ignore[no-untyped-def]
     """Open another notebook in a new tab of the same JupyterLab (the others stay open)."""
     page.goto(f"{base_url}/lab/tree/{path}?token={token}")
-    # its tab in front, not the tab the reloaded page showed first
-    front = page.locator("#jp-main-dock-panel .lm-TabBar-tab.lm-mod-current")
-    front.filter(has_text=Path(path).name).wait_for(timeout=60_000)
-    page.locator(f"{_SHOWN} .jp-CodeCell").first.wait_for(timeout=60_000)
-    idle = page.locator(_SHOWN_IDLE)
+    show_tab(page, Path(path).name, timeout_ms=60_000)
     choose = page.get_by_role("button", name="Select", exact=True)
-    idle.or_(choose).first.wait_for(timeout=60_000)
     if choose.is_visible():  # a slow kernel list makes JupyterLab ask; a learner picks Python 3
         choose.click()
 
 
 def show_tab(page, name: str, timeout_ms: int = 90_000) -> None:  # type: ignore[no-untyped-def]
     """Put the notebook `name` (opened, maybe behind a restored tab) in front, as a learner's
-    click on its tab does, and wait until its own kernel is idle."""
-    tabs = page.locator("#jp-main-dock-panel .lm-TabBar-tab")
-    tab = tabs.filter(has_text=name).first
-    tab.wait_for(timeout=60_000)
-    tab.click()
-    tabs.and_(page.locator(".lm-mod-current")).filter(has_text=name).wait_for(timeout=30_000)
+    click on its tab does, and wait until its own kernel is idle or JupyterLab asks."""
+    tab = page.locator("#jp-main-dock-panel .lm-TabBar-tab").filter(has_text=name).first
+    tab.click(timeout=60_000)
+    front = page.locator("#jp-main-dock-panel .lm-TabBar-tab.lm-mod-current")
+    front.filter(has_text=name).wait_for(timeout=30_000)
     page.locator(f"{_SHOWN} .jp-CodeCell").first.wait_for(timeout=60_000)
     page.locator(_SHOWN_IDLE).or_(page.locator(".jp-Dialog")).first.wait_for(timeout=timeout_ms)
 
