@@ -11,6 +11,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from file_order import file_of, longest_first, read_seconds, write_seconds
 
 from course_lib.core.paths import REPO_ROOT
 from course_lib.session.session import Session
@@ -20,6 +21,9 @@ if os.environ.get("COURSE_TRACE_ALLOCATIONS"):  # e.g. 25: frames kept; slow, so
 
     tracemalloc.start(int(os.environ["COURSE_TRACE_ALLOCATIONS"]))
 
+# COURSE_FILE_SECONDS=tests/file_seconds.txt: write how long each file took (the order's data)
+_SECONDS_OUT = os.environ.get("COURSE_FILE_SECONDS", "")
+_file_seconds: dict[str, float] = {}
 RERUNS_FILE = REPO_ROOT / "test-artifacts" / "reruns.txt"
 _RERUN_TAIL = 40  # lines of each rerun's failure shown at the end of the run
 
@@ -30,23 +34,36 @@ def pytest_sessionstart(session: pytest.Session) -> None:
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """Never rerun a notebook's cell: a rerun runs it alone in a fresh kernel, without the
-    cells before it (CI saw lesson 2's self-check fail with "name 'lesson' is not defined"
-    after its cell 5 was rerun), which hides the first failure behind a false one."""
+    """Deal the longest files first (tests/support/file_order.py). Never rerun a notebook's
+    cell: a rerun runs it alone in a fresh kernel, without the cells before it (CI saw lesson
+    2's self-check fail with "name 'lesson' is not defined" after its cell 5 was rerun), which
+    hides the first failure behind a false one."""
     from nbval.plugin import IPyNbCell
 
+    items[:] = longest_first(items, read_seconds())
     for item in items:
         if isinstance(item, IPyNbCell):
             item.add_marker(pytest.mark.flaky(reruns=0))
 
 
 def pytest_runtest_logreport(report: pytest.TestReport) -> None:
-    """Keep why a test was rerun (a rerun is a flake to fix; -rR names it, never says why)."""
-    if report.outcome != "rerun" or "PYTEST_XDIST_WORKER" in os.environ:
+    """Keep why a test was rerun (a rerun is a flake to fix; -rR names it, never says why);
+    add up each file's seconds when asked to record them."""
+    if "PYTEST_XDIST_WORKER" in os.environ:
         return  # the workers' reports reach the controller, which writes them once
+    if _SECONDS_OUT:
+        name = file_of(report.nodeid)
+        _file_seconds[name] = _file_seconds.get(name, 0.0) + report.duration
+    if report.outcome != "rerun":
+        return
     RERUNS_FILE.parent.mkdir(parents=True, exist_ok=True)
     with RERUNS_FILE.open("a", encoding="utf-8") as out:
         out.write(f"===== {report.nodeid} ({report.when})\n{report.longreprtext}\n")
+
+
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    if _SECONDS_OUT and "PYTEST_XDIST_WORKER" not in os.environ and _file_seconds:
+        write_seconds(_file_seconds, Path(_SECONDS_OUT))
 
 
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:

@@ -21,6 +21,7 @@ from course_lib.core.waiting import wait_until
 from course_lib.sim.view.live import LiveView
 from course_lib.sim.world.model import build_model
 from course_lib.tools.testing import independent_env
+from course_lib.viz.server import WATCHERS_COMMAND
 
 pytestmark = [
     # meshcat's Visualizer(window=...) is given our window; its own socket is never opened
@@ -28,6 +29,7 @@ pytestmark = [
 ]
 
 PROBE_S = 0.1
+QUIET_S = 0.3  # no message for this long: the server sent what it had
 BASE = "/meshcat/mujoco/base_link"
 
 
@@ -63,7 +65,23 @@ class Browser:
     def say(self, text: str) -> None:
         """Send what the viewer page sends when nobody can see it (`hidden`) or again (`shown`)."""
         self.loop.call_soon_threadsafe(self.connection.write_message, text)
-        time.sleep(0.2)
+
+    def settled(self) -> int:
+        """Wait until no message came for QUIET_S (at most 10 s); return how many came."""
+        count, since = len(self.messages), time.monotonic()
+        deadline = since + 10.0
+        while time.monotonic() < deadline and time.monotonic() - since < QUIET_S:
+            time.sleep(0.02)
+            if len(self.messages) != count:
+                count, since = len(self.messages), time.monotonic()
+        return count
+
+    def poses_after(self, count: int) -> list[dict]:
+        """Wait until at least `count` pose messages came (at most 10 s), then until no more
+        come; return them all (a busy machine delays them, it does not lose them)."""
+        wait_until(lambda: len(self.poses()) >= count, 10.0)
+        self.settled()
+        return self.poses()
 
     def close(self) -> None:
         """Close the websocket, wait until the reader saw it end (its socket closed), stop."""
@@ -103,6 +121,11 @@ def view() -> Iterator[tuple[LiveView, mujoco.MjModel, mujoco.MjData, int]]:
             server.stdout.close()
 
 
+def _server_says_watchers(live: LiveView, count: int) -> None:
+    """Wait until the server counts `count` watchers (a page's `hidden` or `shown` was read)."""
+    assert wait_until(lambda: int(live.window.request(WATCHERS_COMMAND)) == count, 10.0)
+
+
 def _tick(live: LiveView, model, data, *, moving: bool, ticks: int = 25) -> None:  # type: ignore[no-untyped-def]
     """Call update() at 50 Hz for `ticks` frames, moving the robot 1 cm a frame if `moving`."""
     for _ in range(ticks):
@@ -121,8 +144,7 @@ def test_nothing_is_sent_while_no_browser_watches(view) -> None:  # type: ignore
     try:
         _tick(live, model, data, moving=False, ticks=25)  # the probe finds the browser
         assert live.watchers == 1
-        time.sleep(0.3)
-        poses = browser.poses()
+        poses = browser.poses_after(1)
         assert poses, "a browser that connected late never got the robot's pose"
         matrices = poses[-1]["matrices"].data  # Float32Array: 16 floats per path, by column
         at = poses[-1]["paths"].index(BASE)
@@ -138,14 +160,13 @@ def test_a_watched_view_gets_one_message_per_moved_frame(view) -> None:  # type:
     try:
         _tick(live, model, data, moving=False, ticks=25)  # found; the first frame is sent
         sent = live.updates
-        time.sleep(0.3)
-        before = len(browser.poses())
+        before = len(browser.poses_after(1))
         _tick(live, model, data, moving=False, ticks=25)
-        time.sleep(0.3)
+        browser.settled()
         assert live.updates == sent and len(browser.poses()) == before, "a still robot was sent"
         received = len(browser.messages)
         _tick(live, model, data, moving=True, ticks=20)
-        time.sleep(0.3)
+        browser.poses_after(before + 20)
         frames = [umsgpack.unpackb(m) for m in browser.messages[received:]]
         assert live.updates - sent == 20 and len(frames) == 20, (live.updates - sent, len(frames))
         assert all(f["type"] == "set_transforms" for f in frames)  # one message per frame
@@ -165,23 +186,25 @@ def test_a_hidden_page_gets_no_poses_and_is_no_watcher(view) -> None:  # type: i
         _tick(live, model, data, moving=True, ticks=10)
         assert live.watchers == 2
         hidden.say("hidden")
+        _server_says_watchers(live, 1)
+        seen.settled()
         before_seen, before_hidden = len(seen.poses()), len(hidden.poses())
         _tick(live, model, data, moving=True, ticks=20)
-        time.sleep(0.3)
-        assert len(seen.poses()) - before_seen == 20
+        assert len(seen.poses_after(before_seen + 20)) - before_seen == 20
+        hidden.settled()
         assert len(hidden.poses()) == before_hidden, "a hidden page was sent poses"
         assert live.watchers == 1
         seen.say("hidden")
+        _server_says_watchers(live, 0)
         _tick(live, model, data, moving=True, ticks=20)
         assert live.watchers == 0  # nobody sees the view: the simulation sends nothing
         sent = live.updates
         _tick(live, model, data, moving=True, ticks=20)
         assert live.updates == sent
         hidden.say("shown")  # its tab in front again: the latest poses at once, then each move
-        assert len(hidden.poses()) == before_hidden + 1
+        assert len(hidden.poses_after(before_hidden + 1)) == before_hidden + 1
         _tick(live, model, data, moving=False, ticks=25)  # the probe finds it
-        time.sleep(0.3)
-        poses = hidden.poses()
+        poses = hidden.poses_after(before_hidden + 1)
         at = poses[-1]["paths"].index(BASE)
         x = struct.unpack_from("<f", poses[-1]["matrices"].data, (16 * at + 12) * 4)[0]
         assert abs(x - data.xpos[model.body("base_link").id][0]) < 1e-3, "the view is stale"

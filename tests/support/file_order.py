@@ -1,0 +1,64 @@
+"""The suite's files, longest first: each worker takes whole files (`--dist loadfile`), so a
+long file dealt last keeps one worker busy while the others stand idle (a run here ended with
+one worker alone for 90 s on the three slowest one-test files, which xdist's own order, by
+test count, deals last). The seconds come from a whole run (`tests/file_seconds.txt`)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Protocol
+
+__all__ = ["SECONDS_FILE", "file_of", "longest_first", "read_seconds", "write_seconds"]
+
+SECONDS_FILE = Path(__file__).resolve().parents[1] / "file_seconds.txt"
+_HEADER = """\
+# Seconds each test file took in a whole run (`make test` on 2 cores, 3 workers): the suite
+# deals the files longest first (tests/support/file_order.py). Files not listed count as 0.
+# Written by `COURSE_FILE_SECONDS=tests/file_seconds.txt make test`.
+"""
+
+
+class _Item(Protocol):
+    nodeid: str
+
+
+def file_of(nodeid: str) -> str:
+    """Return the file part of a test's node id (pure)."""
+    return nodeid.split("::", 1)[0]
+
+
+def read_seconds(path: Path = SECONDS_FILE) -> dict[str, float]:
+    """Return {file: seconds} from a seconds file ('' lines and # comments skipped)."""
+    seconds: dict[str, float] = {}
+    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+        line = line.split("#", 1)[0].strip()
+        if not line:
+            continue
+        value, _, name = line.partition(" ")
+        try:
+            seconds[name.strip()] = float(value)
+        except ValueError:
+            raise ValueError(f"{path}:{number}: expected 'SECONDS FILE', got {line!r}") from None
+    return seconds
+
+
+def write_seconds(seconds: dict[str, float], path: Path, *, at_least: float = 2.0) -> None:
+    """Write the files that took `at_least` seconds, longest first."""
+    rows = sorted(((s, f) for f, s in seconds.items() if s >= at_least), reverse=True)
+    text = _HEADER + "".join(f"{s:.0f} {f}\n" for s, f in rows)
+    path.write_text(text, encoding="utf-8")
+
+
+def longest_first(items: Sequence[_Item], seconds: dict[str, float]) -> list[_Item]:
+    """Return `items` with their files ordered by `seconds`, longest first (pure; a file's own
+    tests keep their order; files not listed keep theirs, after the listed ones)."""
+    first: dict[str, int] = {}
+    for place, item in enumerate(items):
+        first.setdefault(file_of(item.nodeid), place)
+
+    def key(item: _Item) -> tuple[float, int]:
+        name = file_of(item.nodeid)
+        return -seconds.get(name, 0.0), first[name]
+
+    return sorted(items, key=key)
