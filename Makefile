@@ -63,7 +63,11 @@ stop: ## Stop this user's course processes (labs, simulations, viewers, nodes, d
 $(STAMP_ENV): environment.txt pyproject.toml scripts/check_platform.py course_lib/tools/slim_imports.py course_lib/tools/kernelspec.py
 	@$(PYTHON) scripts/check_platform.py
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
-	$(PY) -m pip install --quiet --disable-pip-version-check -r environment.txt
+	@# uv installs environment.txt's pins in parallel; pip is the fallback (uv reads no pip
+	@# configuration: a machine that reaches packages only through pip's index settings).
+	$(PY) -m pip install --quiet --disable-pip-version-check "$$(grep '^uv==' environment.txt)"
+	$(VENV)/bin/uv pip install --quiet --python $(PY) --compile-bytecode -r environment.txt \
+	  || $(PY) -m pip install --quiet --disable-pip-version-check -r environment.txt
 	$(PY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
 	$(PY) -c "from course_lib.tools.slim_imports import install_pth; install_pth()"
 	@# The python3 kernel without debugpy (8 MiB a kernel): course_lib/notebook/kernel_launcher.py

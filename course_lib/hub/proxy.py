@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import fcntl
 import shutil
 import subprocess
 from pathlib import Path
@@ -35,7 +36,15 @@ def _missing_npm() -> CourseError:
 
 def install_proxy(environment: Path) -> Path:
     """Install the pinned proxy under `environment/proxy` (again only when the pins changed);
-    return the path of its command."""
+    return the path of its command. One install at a time: two `npm ci` in one folder (two
+    hubs started at once on a fresh host) fail each other."""
+    environment.mkdir(parents=True, exist_ok=True)
+    with open(environment / ".proxy.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        return _install_locked(environment)
+
+
+def _install_locked(environment: Path) -> Path:
     folder = environment / "proxy"
     command = proxy_command(environment)
     same = all(

@@ -10,7 +10,6 @@ handed over (course_lib.hub.progress_service), as this process's user.
 from __future__ import annotations
 
 import contextlib
-import fcntl
 import json
 import os
 import re
@@ -45,11 +44,8 @@ HERE = Path(__file__).resolve().parent
 
 def proxy_command(cache: Path) -> str:
     """Return the course's pinned configurable-http-proxy, installed from npm once into `cache`
-    (shared by the xdist workers, hence the lock)."""
-    cache.mkdir(parents=True, exist_ok=True)
-    with open(cache / ".lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        return str(install_proxy(cache))
+    (shared by the xdist workers: install_proxy installs one at a time)."""
+    return str(install_proxy(cache))
 
 
 def _die_with_parent() -> None:
