@@ -1,19 +1,23 @@
 """Runs inside a learner's kernel for bench/class_capacity.py: lesson 7's drive, measured.
 
-`drive_window(lesson, t0, t1, gets)` keeps the robot driving at the lesson's speed between
-two marks on the floor (turning it round with `%ros2 param set`, as a learner would) from now
-until wall time `t1`; between wall times `t0` and `t1` it times `gets` evenly spread
-`%ros2 param get` magics and samples the simulation's clock (the /odom stamps). It returns one
-JSON line: the real-time factor over the window, the get latencies, the top speed.
+`drive_window(lesson, t0, t1, gets, seed)` keeps the robot driving at the lesson's speed
+between two marks on the floor (turning it round with `%ros2 param set`, as a learner would)
+from now until wall time `t1`; between wall times `t0` and `t1` it times `gets`
+`%ros2 param get` magics, one in each of `gets` equal slots, and samples the simulation's clock
+(the /odom stamps). With a `seed`, each get comes at a random moment of its slot (a learner of
+its own: learners do not type in step); with none, at the slot's start (every learner's kernel
+then asks at the same instant: a burst of N commands at once). It returns one JSON line: the
+real-time factor over the window, the get latencies, the top speed.
 """
 
 from __future__ import annotations
 
 import json
+import random
 import time
 from typing import Any
 
-__all__ = ["drive_window", "real_time_factor"]
+__all__ = ["drive_window", "get_moments", "real_time_factor"]
 
 NODE = "/param_vel_node"
 TURN_AT_M = (0.0, 1.5)  # drive between these x marks (the obstacle box stands at x 2.4 m)
@@ -31,7 +35,15 @@ def real_time_factor(samples: list[tuple[float, float]]) -> float:
     return cov / var if var > 0 else float("nan")
 
 
-def drive_window(lesson: Any, t0: float, t1: float, gets: int) -> str:
+def get_moments(t0: float, t1: float, gets: int, seed: int | None) -> list[float]:
+    """Return when each get is due: one in each of `gets` equal slots of [t0, t1), at a
+    random moment of it (`seed`), or at its start (None) (pure)."""
+    spacing = (t1 - t0) / gets
+    draw = random.Random(seed)
+    return [t0 + (i + (0.0 if seed is None else draw.random())) * spacing for i in range(gets)]
+
+
+def drive_window(lesson: Any, t0: float, t1: float, gets: int, seed: int | None = None) -> str:
     """Drive back and forth until `t1`, timing `%ros2 param get` from `t0`; return JSON."""
     from IPython import get_ipython
     from IPython.utils.capture import capture_output
@@ -62,9 +74,7 @@ def drive_window(lesson: Any, t0: float, t1: float, gets: int) -> str:
     samples: list[tuple[float, float]] = []
     latencies: list[float] = []
     top = 0.0
-    spacing = (t1 - t0) / gets
-    for i in range(gets):
-        due = t0 + i * spacing
+    for due in get_moments(t0, t1, gets, seed):
         while time.time() < due:
             time.sleep(min(0.05, max(0.0, due - time.time())))
         if time.time() >= t1:

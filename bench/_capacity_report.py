@@ -264,7 +264,7 @@ def print_class(facts: dict[str, object], load_before: tuple[float, ...], took: 
     )
 
 
-def record(facts: dict[str, object], load_before: tuple[float, ...]) -> None:
+def record(facts: dict[str, object], load_before: tuple[float, ...], gets: str) -> None:
     """Write deploy/capacity.yaml from this run's figures."""
     import yaml
 
@@ -275,6 +275,7 @@ def record(facts: dict[str, object], load_before: tuple[float, ...]) -> None:
             "host": facts["host"],
             "by": "python -m bench.class_capacity --record",
             "load_average_before": [round(x, 2) for x in load_before],
+            "param_gets": gets,
             "learners_held": facts["held"],
             "first_failing_n": facts["first_failing_n"],
             "why": facts["why"],

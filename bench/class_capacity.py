@@ -9,7 +9,10 @@ the live speed plot, `%ros2 param set ... velocity 0.2`, the drive), plus one we
 per learner on the 3D view through JupyterLab's proxy (the learner's browser tab). For N = 1,
 2, 4, 8, ... all N
 learners drive at once; over a common window each kernel measures its simulation's real-time
-factor (the /odom stamps against wall time) and times evenly spread `%ros2 param get` magics.
+factor (the /odom stamps against wall time) and times `%ros2 param get` magics, one in each
+equal slot of the window at a random moment of it (--in-step: at the slot's start, every
+learner's at the same instant; learners do not type in step, and N gets at once measure a
+burst: N x 2 ms of CPU on 2 cores).
 Each round prints every learner's figures and one learner's processes (CPU cores, PSS MiB);
 the end says which goal fails first (memory per learner included).
 The bench adds learners until a goal fails (--keep-going: until the real-time factor fails;
@@ -62,7 +65,7 @@ DRIVE = """\
 %ros2 param set /param_vel_node velocity 0.2
 lesson.drive_for(3.0)
 from bench._capacity_kernel import drive_window
-print('window', drive_window(lesson, {t0!r}, {t1!r}, {gets}))
+print('window', drive_window(lesson, {t0!r}, {t1!r}, {gets}, {seed!r}))
 %ros2 param set /param_vel_node velocity 0.0
 lesson.wait_until_stopped()
 world.reset()
@@ -208,13 +211,20 @@ def add_learner(number: int, views: Views) -> Learner:
     return learner
 
 
-def drive_round(learners: list[Learner], window_s: float, gets: int) -> Round:
-    """Let every learner drive at once; measure the common window; return the figures."""
+def drive_round(
+    learners: list[Learner], window_s: float, gets: int, *, in_step: bool = False
+) -> Round:
+    """Let every learner drive at once; measure the common window; return the figures (each
+    learner's gets at its own random moments, or all learners' at the same instants)."""
     lead = 15.0 + 2.0 * len(learners)  # param set + drive_for(3.0) everywhere before t0
     t0 = time.time() + lead
     t1 = t0 + window_s
-    code = DRIVE.format(t0=t0, t1=t1, gets=gets)
-    ids = [learner.kernel.submit(code) for learner in learners]
+    ids = [
+        learner.kernel.submit(
+            DRIVE.format(t0=t0, t1=t1, gets=gets, seed=None if in_step else learner.number)
+        )
+        for learner in learners
+    ]
     time.sleep(max(0.0, t0 - time.time()))
     own = os.getpid()
     roots = {learner.number: tree_pids(learner.roots) for learner in learners}
@@ -290,11 +300,24 @@ def sizes(cap: int) -> list[int]:
     return out
 
 
+def gets_timing(in_step: bool) -> str:
+    """Say when the learners' param gets come (pure)."""
+    if in_step:
+        return "every learner's at the same instants (--in-step)"
+    return "each learner's at its own random moments"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max", type=int, default=16, help="most learners (default 16)")
     parser.add_argument("--window", type=float, default=30.0, help="seconds measured per N")
     parser.add_argument("--gets", type=int, default=200, help="param gets per learner per N")
+    parser.add_argument(
+        "--in-step",
+        action="store_true",
+        help="every learner's param gets at the same instants (a burst of N commands at once; "
+        "by default each learner's come at its own random moments, as people type)",
+    )
     parser.add_argument("--record", action="store_true", help="write deploy/capacity.yaml")
     parser.add_argument(
         "--keep-going",
@@ -317,6 +340,7 @@ def main() -> None:
         f"{load_before[0]:.2f} {load_before[1]:.2f} {load_before[2]:.2f} before the bench",
         flush=True,
     )
+    print(f"param gets: {gets_timing(args.in_step)}", flush=True)
     learners: list[Learner] = []
     rounds: list[Round] = []
     views = Views()
@@ -326,7 +350,9 @@ def main() -> None:
                 learners.append(add_learner(len(learners) + 1, views))
             attempts: list[Round] = []
             for attempt in range(1, ATTEMPTS + 1):
-                attempts.append(drive_round(learners, args.window, args.gets))
+                attempts.append(
+                    drive_round(learners, args.window, args.gets, in_step=args.in_step)
+                )
                 print_round(attempts[-1])
                 if not attempts[-1].failures or attempts[-1].others_cores <= args.others:
                     break
@@ -348,7 +374,7 @@ def main() -> None:
     facts = summary(rounds)
     print_class(facts, load_before, time.monotonic() - started)
     if args.record:
-        record(facts, load_before)
+        record(facts, load_before, gets_timing(args.in_step))
 
 
 if __name__ == "__main__":

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from bench._capacity_kernel import real_time_factor
+from bench._capacity_kernel import get_moments, real_time_factor
 from bench._capacity_report import Figures, held_cores, judge, percentile, requests
 from bench.class_capacity import sizes
 
@@ -58,3 +58,16 @@ def test_held_cores_never_pack_more_learners_per_core_than_held_every_goal() -> 
 def test_learner_counts_double_up_to_the_cap() -> None:
     assert sizes(16) == [1, 2, 4, 8, 16]
     assert sizes(12) == [1, 2, 4, 8]
+
+
+def test_in_step_gets_come_at_each_slot_start() -> None:
+    assert get_moments(10.0, 11.0, 4, None) == [10.0, 10.25, 10.5, 10.75]
+
+
+def test_a_learner_of_its_own_asks_once_in_each_slot_at_its_own_moments() -> None:
+    first, again, other = (get_moments(10.0, 11.0, 4, seed) for seed in (1, 1, 2))
+    assert first == again  # the same learner number, the same moments: a rerun compares
+    assert first != other
+    for moments in (first, other):
+        assert [int((m - 10.0) // 0.25) for m in moments] == [0, 1, 2, 3]
+        assert moments != get_moments(10.0, 11.0, 4, None)
