@@ -9,6 +9,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Protocol
 
+from course_lib.core.atomic_files import atomic_write
+
 __all__ = ["SECONDS_FILE", "file_of", "longest_first", "read_seconds", "write_seconds"]
 
 SECONDS_FILE = Path(__file__).resolve().parents[1] / "file_seconds.txt"
@@ -44,10 +46,10 @@ def read_seconds(path: Path = SECONDS_FILE) -> dict[str, float]:
 
 
 def write_seconds(seconds: dict[str, float], path: Path, *, at_least: float = 2.0) -> None:
-    """Write the files that took `at_least` seconds, longest first."""
+    """Write the files that took `at_least` seconds, longest first (whole or not at all: every
+    collection reads this file)."""
     rows = sorted(((s, f) for f, s in seconds.items() if s >= at_least), reverse=True)
-    text = _HEADER + "".join(f"{s:.0f} {f}\n" for s, f in rows)
-    path.write_text(text, encoding="utf-8")
+    atomic_write(path, _HEADER + "".join(f"{s:.0f} {f}\n" for s, f in rows))
 
 
 def longest_first(items: Sequence[_Item], seconds: dict[str, float]) -> list[_Item]:
