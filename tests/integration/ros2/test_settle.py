@@ -37,38 +37,53 @@ def test_settled_graph_shows_a_node_started_before_the_client(session: Session) 
         child.stop()
 
 
-def test_a_warm_client_does_not_wait(session: Session) -> None:
-    client = RosClient(session.node, session.wait_future)
-    client._born -= 2 * FASTDDS_DEFAULT_ANNOUNCEMENT_S  # as old as a warm daemon's
-    started = time.monotonic()
-    client.settle()
-    # a young client waits for the announcement period (seconds); a warm one only asks the
-    # graph once (milliseconds; bounded loosely, so a busy machine never fails it)
-    assert time.monotonic() - started < 0.5
+def test_a_warm_client_does_not_wait() -> None:
+    # A domain of its own: in the module's domain a node stopped by another test can stay in
+    # this long-lived node's graph as a ghost (ros2/ros2#1413), which a client that never
+    # listed it waits GHOST_GRACE_S for (a new node's name also comes before its endpoints):
+    # on a busy host the CI saw that second here, three times of three.
+    own, client = _young_client()
+    try:
+        client._born -= 2 * FASTDDS_DEFAULT_ANNOUNCEMENT_S  # as old as a warm daemon's
+        started = time.monotonic()
+        client.settle()
+        # a young client waits for the announcement period (seconds); a warm one only asks
+        # the graph once (milliseconds; bounded loosely, so a busy machine never fails it)
+        assert time.monotonic() - started < 0.5
+    finally:
+        own.close()
 
 
 def _names(client: RosClient) -> set[str]:
     return {n.full_name for n in client.node_names()}
 
 
-def test_two_live_namesakes_are_both_listed(session: Session) -> None:
+def test_two_live_namesakes_are_both_listed() -> None:
     """The ghost filter (discovery.without_ghosts) never hides a real duplicate: two live
-    param_vel_node processes are listed twice, as the real `ros2 node list` does."""
-    first = session.run("parameter_tests", "param_vel")
-    second = session.run("parameter_tests", "param_vel")
-    client = RosClient(session.node, session.wait_future)
+    param_vel_node processes are listed twice, as the real `ros2 node list` does. In a domain
+    of its own: a ghost left by another test's node (ros2/ros2#1413) plus one namesake also
+    count two while the graph is not settled (the filter waits for a settled graph)."""
+    own, client = _young_client()
+    first = own.run("parameter_tests", "param_vel")
+    second = own.run("parameter_tests", "param_vel")
     try:
 
         def twice() -> bool:
             names = [n.full_name for n in client.node_names()]
             return names.count("/param_vel_node") == 2
 
-        assert wait_until(twice, 15), [n.full_name for n in client.node_names()]
-        _holders, settled = client._holders()
-        assert settled, "every bound participant seen, so the filter did run"
+        def settled() -> bool:
+            return client._holders()[1]
+
+        # settled first: every bound participant seen, so the filter did run
+        assert wait_until(lambda: settled() and twice(), 15), (
+            [n.full_name for n in client.node_names()],
+            settled(),
+        )
     finally:
         first.stop()
         second.stop()
+        own.close()
 
 
 def test_a_fresh_client_finds_a_node_whose_process_is_slow_to_answer(session: Session) -> None:
