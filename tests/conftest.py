@@ -14,7 +14,7 @@ import pytest
 from file_order import file_of, longest_first, read_seconds, write_seconds
 
 from course_lib.core.paths import REPO_ROOT
-from course_lib.session.session import Session
+from course_lib.session.session import Session, close_current_session
 
 if os.environ.get("COURSE_TRACE_ALLOCATIONS"):  # e.g. 25: frames kept; slow, so asked for
     import tracemalloc  # an unclosed socket's warning then says where it was made
@@ -115,6 +115,16 @@ def _garbage_of_the_module() -> Iterator[None]:
     module the garbage collector happens to run in."""
     yield
     gc.collect()
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _session_of_the_module() -> Iterator[None]:
+    """Close this worker's session (`get_session()`) as a module ends, before the garbage is
+    collected: its nodes stop with it. A module that left its node running handed it to the
+    next module of the same worker ("nothing running" then listed param_vel_node's services:
+    test_self_checks_fail before test_ros2_part2_empty)."""
+    yield
+    close_current_session()
 
 
 @pytest.fixture(autouse=True)

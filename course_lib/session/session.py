@@ -26,6 +26,7 @@ __all__ = [
     "ROS_DISTRO_ENV",
     "SESSION_DOMAIN_ENV",
     "Session",
+    "close_current_session",
     "get_session",
     "session_env",
 ]
@@ -304,3 +305,12 @@ def get_session(**kwargs: Any) -> Session:
         if _current is None or _current.closed:
             _current = Session(**kwargs)
         return _current
+
+
+def close_current_session() -> None:
+    """Close this process's session, if one is open: its children stop, and the next
+    get_session() starts a fresh one in a domain of its own."""
+    with _current_lock:
+        current = _current
+    if current is not None:
+        current.close()

@@ -221,3 +221,18 @@ def test_child_stopped_from_elsewhere_never_stays_a_zombie() -> None:
     while stat.exists() and time.monotonic() < deadline:
         time.sleep(0.02)
     assert not stat.exists(), f"pid {child.pid} is left as {stat.read_text().split()[2]}"
+
+
+def test_closing_the_current_session_stops_its_nodes_and_the_next_one_is_fresh() -> None:
+    from course_lib.session.session import close_current_session, get_session
+
+    first = get_session()
+    child = first.run("parameter_tests", "param_vel")
+    close_current_session()
+    assert first.closed and not child.alive
+    close_current_session()  # none open: nothing to do
+    second = get_session()
+    try:
+        assert second is not first and not second.closed and second.children == []
+    finally:
+        close_current_session()
