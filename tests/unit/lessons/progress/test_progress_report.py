@@ -87,7 +87,8 @@ def test_a_silent_service_never_holds_the_cell(capsys: pytest.CaptureFixture[str
         url = f"http://127.0.0.1:{silent.getsockname()[1]}/services/course-progress/"
         started = time.monotonic()
         thread = report_progress(CHECK, environ=_env(url))
-        assert time.monotonic() - started < 0.2, "the cell waited for the service"
+        # well under the request's timeout (a busy host can take a while to start a thread)
+        assert time.monotonic() - started < TIMEOUT_S / 2, "the cell waited for the service"
         assert thread is not None and thread.daemon
         thread.join(TIMEOUT_S + 3)
         assert not thread.is_alive(), "the request has no timeout"

@@ -2,7 +2,9 @@
 
 A node's participant can answer while the client takes the view that ends the wait (seen in
 the suite: a starved process resumed, "not found after 6.2 s" with the node in the graph). The
-graph here is scripted: the node arrives while the deciding view is taken.
+graph here is scripted: the node arrives while the deciding view is taken. The clock is
+scripted too: on a busy host real sleeps overshoot, and the quiet time ran out a poll before
+the node's call (the fresh-clone suite failed here three times of three).
 """
 
 from __future__ import annotations
@@ -42,8 +44,22 @@ class _ArrivingGraph(RosClient):
         return True
 
 
+class _Clock:
+    """The client module's `time`: sleeping moves the clock by exactly that much."""
+
+    def __init__(self) -> None:
+        self.now = 1000.0
+
+    def monotonic(self) -> float:
+        return self.now
+
+    def sleep(self, seconds: float) -> None:
+        self.now += seconds
+
+
 @pytest.fixture
 def short_waits(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(client_module, "time", _Clock())
     monkeypatch.setattr(client_module, "DISCOVERY_WAIT_S", 0.05)
     monkeypatch.setattr(client_module, "YOUNG_CLIENT_S", 0.0)
     monkeypatch.setattr(client_module, "SETTLED_QUIET_S", 0.15)
