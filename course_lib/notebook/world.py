@@ -132,24 +132,37 @@ class World:
 
     def wait_for_odom(self, predicate: Any = None, timeout: float = 10.0) -> OdomReading:
         """Return the latest /odom reading if it matches `predicate` (or none is given), else
-        the first later one that does; raise TimeoutError."""
+        the first later one that does; raise TimeoutError.
+
+        The predicate runs without the world's lock: the session's ROS thread takes that lock
+        for every sample, so a predicate that waits on ROS (a parameter get) must not hold it.
+        """
         deadline = time.monotonic() + timeout
         with self._cond:
-            latest = self._latest
-            if latest is not None and (predicate is None or predicate(latest)):
-                return latest
-            seen = self._received
-            while True:
-                for number, reading in list(self._recent):
-                    if number > seen:
-                        seen = number
-                        if predicate is None or predicate(reading):
-                            return reading
-                remaining = deadline - time.monotonic()
-                if remaining <= 0:
-                    self._check_alive()
-                    raise TimeoutError(f"no matching /odom within {timeout:g} s")
-                self._cond.wait(min(remaining, 0.2))
+            latest, seen = self._latest, self._received
+        if latest is not None and (predicate is None or predicate(latest)):
+            return latest
+        while True:
+            with self._cond:
+                fresh = [(n, reading) for n, reading in self._recent if n > seen]
+                if not fresh:
+                    remaining = deadline - time.monotonic()
+                    if remaining <= 0:
+                        raise self._no_match(timeout)
+                    self._cond.wait(min(remaining, 0.2))
+                    continue
+            for number, reading in fresh:
+                seen = number
+                if predicate is None or predicate(reading):
+                    return reading
+            if time.monotonic() >= deadline:
+                raise self._no_match(timeout)
+
+    def _no_match(self, timeout: float) -> TimeoutError:
+        """Return the error of a wait that found no matching reading (a stopped simulation
+        raises its own error here instead)."""
+        self._check_alive()
+        return TimeoutError(f"no matching /odom within {timeout:g} s")
 
     def odom(self) -> OdomReading:
         """Return the latest /odom reading."""

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import threading
+import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -287,3 +288,24 @@ def test_a_paused_world_hands_its_last_samples_over(session: Session, fresh: Wor
                 fresh.resume()
     finally:
         fresh.drive(0.0, 0.0)
+
+
+def test_a_predicate_may_wait_on_ros(session: Session, fresh: World) -> None:
+    """A wait_for_odom predicate that asks a node for a parameter gets its answer while samples
+    keep arriving (the world held its lock during the predicate; the session's ROS thread,
+    blocked on that lock by the next sample, never delivered the answer: a 10 s timeout)."""
+    from rclpy.parameter_client import AsyncParameterClient
+
+    node = session.run("parameter_tests", "param_vel")
+    try:
+        client = AsyncParameterClient(session.node, "/param_vel_node")
+        assert client.wait_for_services(timeout_sec=10.0)
+
+        def asks_ros(_reading: Any) -> bool:
+            time.sleep(0.3)  # samples arrive meanwhile: one message per 0.1 simulated s
+            future = client.get_parameters(["velocity"])
+            return session.wait_future(future, 3.0).values[0].double_value == 0.0
+
+        fresh.wait_for_odom(asks_ros, timeout=10.0)
+    finally:
+        node.stop()
