@@ -24,10 +24,12 @@ from lab_server import LabServer  # noqa: E402
 from lab_terminal import RestTerminal  # noqa: E402
 
 from course_lib.core.paths import REPO_ROOT  # noqa: E402
+from course_lib.core.waiting import wait_until  # noqa: E402
 from course_lib.processes.ownership import read_process  # noqa: E402
 from course_lib.tools.testing import independent_env  # noqa: E402
 
 PY = sys.executable
+HANG_UP_S = 5.0  # a hung-up job's end, after the lab's: milliseconds, seconds on a busy host
 # The learner's script in the terminal: a session with the tutorial node, and a child that
 # ignores SIGINT and SIGTERM (only SIGKILL ends it).
 LEARNER_SCRIPT = """
@@ -111,6 +113,10 @@ def main() -> None:
     facts["outside_exit"] = outside.returncode
     facts["outside_output"] = outside.stdout + outside.stderr
     lab.process.wait(10.0)
+    # The lab's end hangs up its terminals; their shells then hang up their jobs (the
+    # learner's `sleep 600 &`): moments after the lab's own exit, not before it.
+    ours = [pid for name, pid in pids.items() if name != "logger"]
+    wait_until(lambda: not any(pid_alive(pid) for pid in ours), HANG_UP_S)
     facts["alive_after_outside"] = {name: pid_alive(pid) for name, pid in pids.items()}
     others = [int(e) for e in os.listdir("/proc") if e.isdigit() and int(e) != os.getpid()]
     left = [p for p in others if pid_alive(p) and p != pids["logger"]]
