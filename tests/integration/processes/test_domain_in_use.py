@@ -24,9 +24,11 @@ sys.stdin.readline()
 
 @pytest.mark.parametrize("discovery", ["SUBNET", "LOCALHOST"])
 def test_a_domain_used_by_a_plain_ros_program_is_skipped(discovery: str) -> None:
-    probe = lease_domain()  # a free domain now
+    # The probe's lease stays held until the plain program is seen in its domain: released
+    # earlier, another test worker could lease that domain, and its session would list
+    # someone_elses_node. Once seen, the program itself keeps every lease away.
+    probe = lease_domain()
     taken = probe.domain_id
-    probe.release()
     env = independent_env(ROS_DOMAIN_ID=str(taken), ROS_AUTOMATIC_DISCOVERY_RANGE=discovery)
     other = subprocess.Popen(
         [sys.executable, "-c", PLAIN_NODE],
@@ -36,11 +38,14 @@ def test_a_domain_used_by_a_plain_ros_program_is_skipped(discovery: str) -> None
         text=True,
     )
     try:
-        assert other.stdout.readline() == "up\n"
-        deadline = time.monotonic() + 5.0
-        while not domain_in_use(taken) and time.monotonic() < deadline:
-            time.sleep(0.05)
-        assert domain_in_use(taken), f"no DDS socket of domain {taken} seen"
+        try:
+            assert other.stdout.readline() == "up\n"
+            deadline = time.monotonic() + 5.0
+            while not domain_in_use(taken) and time.monotonic() < deadline:
+                time.sleep(0.05)
+            assert domain_in_use(taken), f"no DDS socket of domain {taken} seen"
+        finally:
+            probe.release()
         lease = lease_domain({}, start=taken)  # the program holds no course lease
         try:
             assert lease.domain_id != taken
