@@ -259,20 +259,29 @@ class RosClient:
         seen = set().union(*holders.values()) if holders else set()
         return holders, bound is not None and len(seen) == bound
 
-    def wait_for_node(self, full_name: str, *, include_hidden: bool, timeout: float) -> bool:
+    def wait_for_node(
+        self,
+        full_name: str,
+        *,
+        include_hidden: bool,
+        timeout: float,
+        clock: Callable[[], float] = time.monotonic,
+        sleep: Callable[[float], None] = time.sleep,
+    ) -> bool:
         """Wait (bounded, at least DISCOVERY_WAIT_S) until `full_name` is in the graph; while
         this host has participants of the domain the client has not seen, or has seen without
-        their node names yet, up to INCOMPLETE_WAIT_S."""
+        their node names yet, up to INCOMPLETE_WAIT_S. (`clock` and `sleep`: as in
+        `wait_settled`.)"""
 
         def found() -> bool:
             names = self.node_names(include_hidden=include_hidden)
             return full_name in {n.full_name for n in names}
 
-        start = time.monotonic()
+        start = clock()
         deadline = start + max(float(timeout), DISCOVERY_WAIT_S, YOUNG_CLIENT_S - self.age())
         complete_since: float | None = None
         while not found():
-            now = time.monotonic()
+            now = clock()
             if now >= deadline:
                 view = self.graph_view()  # a participant unseen, or seen with nameless endpoints
                 partial = bool(view.missing_participants) or bool(view.unknown_endpoints)
@@ -284,7 +293,7 @@ class RosClient:
                     return found()  # the whole domain is known: the node is in it or not
             else:
                 complete_since = None
-            time.sleep(_POLL_S)
+            sleep(_POLL_S)
         return True
 
     def graph_complete(self) -> bool:

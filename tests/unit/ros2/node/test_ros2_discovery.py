@@ -6,6 +6,7 @@ import argparse
 from dataclasses import replace
 
 import pytest
+from fake_clock import FakeClock
 
 from course_lib.core.paths import PACKAGE_DIR
 from course_lib.core.procfs import udp_ports
@@ -51,18 +52,12 @@ def test_fast_dds_defaults_when_no_profile_or_an_unreadable_one(tmp_path) -> Non
     assert timing_from_profile(slower).floor_s == pytest.approx(1.1)
 
 
-class Graph:
+class Graph(FakeClock):
     """A scripted graph on a fake clock: `views` maps a time to what is seen from then on."""
 
     def __init__(self, views: dict[float, GraphView]) -> None:
-        self.now = 0.0
+        super().__init__()
         self.views = sorted(views.items())
-
-    def clock(self) -> float:
-        return self.now
-
-    def sleep(self, seconds: float) -> None:
-        self.now += seconds
 
     def view(self) -> GraphView:
         return [v for t, v in self.views if t <= self.now + 1e-9][-1]
