@@ -62,6 +62,13 @@ class ProcessInfo:
     uid: int
     argv: tuple[str, ...]
     env: dict[str, str]
+    session: int = 0
+    tty: int = 0  # the controlling terminal's device number, 0 for none
+
+    @property
+    def terminal_shell(self) -> bool:
+        """Return whether this process leads a terminal's session (a lab terminal's shell)."""
+        return self.session == self.pid and self.tty != 0
 
     @property
     def owner(self) -> str:
@@ -96,6 +103,8 @@ def read_process(pid: int) -> ProcessInfo | None:
         pid=pid,
         ppid=int(fields[1]),
         pgid=int(fields[2]),
+        session=int(fields[3]),
+        tty=int(fields[4]),
         start=fields[19],
         uid=uid,
         argv=argv,

@@ -6,7 +6,10 @@ own programs started from a lab terminal keep running and are listed.
 Which processes count is ownership.py's rule. Each one gets SIGINT (only those whose parent is
 not itself being stopped: a lab stops its JupyterLab, a launch its nodes), then whatever still
 runs after a grace time gets SIGTERM, then SIGKILL. A process started in a process group of its
-own (every `spawn`ed child) is signalled with its group, as `ChildProcess.stop` does.
+own (every `spawn`ed child) is signalled with its group, as `ChildProcess.stop` does. A lab
+terminal's shell gets SIGHUP where the others get SIGTERM: what a closing terminal sends, and
+what makes the shell hang up its jobs (an interactive shell ignores SIGTERM, and a shell killed
+by SIGKILL leaves its jobs running).
 """
 
 from __future__ import annotations
@@ -19,7 +22,7 @@ from ..core.signalling import send
 from ..core.waiting import wait_until
 from .ownership import CourseProcess, course_processes, current_lab, own_programs, read_process
 
-__all__ = ["StopReport", "Stopped", "stop_course"]
+__all__ = ["StopReport", "Stopped", "stop_course", "stop_processes"]
 
 GRACE_S = 10.0  # a lab stops JupyterLab, its kernels and their nodes within this
 TERM_S = 3.0
@@ -74,12 +77,16 @@ def _same(proc: CourseProcess) -> bool:
     return info is not None and info.start == proc.info.start
 
 
-def _signal(proc: CourseProcess, sig: signal.Signals) -> None:
+def _signal(proc: CourseProcess, sig: signal.Signals) -> signal.Signals:
+    """Send `sig` (SIGHUP for SIGTERM to a terminal's shell); return the signal sent."""
+    if sig == signal.SIGTERM and proc.info.terminal_shell:
+        sig = signal.SIGHUP  # the terminal hangs up: so does the shell, and its jobs
     if not _same(proc):  # gone, or its pid reused: never signal someone else
-        return
+        return sig
     reason = f"`make stop`: {proc.name} is a course process ({proc.reason})"
     with contextlib.suppress(ProcessLookupError, PermissionError):
         send(proc.pid, sig, group=proc.info.pgid == proc.pid, reason=reason)
+    return sig
 
 
 def _wait_gone(pending: dict[int, CourseProcess], timeout: float) -> list[int]:
@@ -93,16 +100,18 @@ def _wait_gone(pending: dict[int, CourseProcess], timeout: float) -> list[int]:
     return gone()
 
 
-def _stop_batch(found: list[CourseProcess], grace_s: float, report: StopReport) -> None:
+def stop_processes(found: list[CourseProcess], grace_s: float, report: StopReport) -> None:
+    """Stop the processes `found` (and only them), adding to `report` how each went."""
     pending = {proc.pid: proc for proc in found}
     roots = [proc for proc in found if proc.info.ppid not in pending]
     stages = ((signal.SIGINT, grace_s), (signal.SIGTERM, TERM_S), (signal.SIGKILL, KILL_S))
     for sig, wait_s in stages:
+        sent: dict[int, signal.Signals] = {}
         for proc in roots if sig == signal.SIGINT else list(pending.values()):
-            _signal(proc, sig)
+            sent[proc.pid] = _signal(proc, sig)
         for pid in _wait_gone(pending, wait_s):
             proc = pending.pop(pid)
-            report.stopped.append(Stopped(proc.name, pid, sig.name))
+            report.stopped.append(Stopped(proc.name, pid, sent.get(pid, sig).name))
         if not pending:
             return
     report.left += pending.values()
@@ -117,7 +126,7 @@ def stop_course(*, grace_s: float = GRACE_S, rounds: int = 3) -> StopReport:
         if not found:
             break
         seen |= {p.pid for p in found}
-        _stop_batch(found, grace_s, report)
+        stop_processes(found, grace_s, report)
         grace_s = TERM_S
     report.kept_own = own_programs()
     return report
