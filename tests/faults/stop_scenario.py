@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -75,6 +76,9 @@ def printed_by_stop(output: str) -> str:
 
 
 def main() -> None:
+    # A suite started under nohup hands an ignored SIGHUP down to the lab's terminals, whose
+    # shells and jobs then outlive any hang-up: the lab here starts as from a login shell.
+    signal.signal(signal.SIGHUP, signal.SIG_DFL)
     env = independent_env()
     folder = REPO_ROOT / "test-artifacts" / "faults" / "make-stop"
     lab = LabServer([], folder, env=env)

@@ -29,6 +29,7 @@ TERMINAL = r"""
 import os, pty, re, signal
 pid, fd = pty.fork()
 if pid == 0:
+    signal.signal(signal.SIGHUP, signal.SIG_DFL)  # as from a login shell, even under nohup
     os.execvp("bash", ["bash", "--norc", "--noprofile", "-i"])
 signal.signal(signal.SIGINT, signal.SIG_IGN)
 signal.signal(signal.SIGTERM, signal.SIG_IGN)
