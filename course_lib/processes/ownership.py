@@ -62,8 +62,8 @@ class ProcessInfo:
     uid: int
     argv: tuple[str, ...]
     env: dict[str, str]
-    session: int = 0
-    tty: int = 0  # the controlling terminal's device number, 0 for none
+    session: int
+    tty: int  # the controlling terminal's device number, 0 for none
 
     @property
     def terminal_shell(self) -> bool:
