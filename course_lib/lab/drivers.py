@@ -36,6 +36,8 @@ _SEEN_WAIT_S = 1.0  # at most, until a publisher started moments ago is discover
 # At most, until a new node's /rosout publisher is discovered (LOCALHOST discovery takes up to
 # ~3 s on a busy host); the wait ends as soon as it is, so a quiet host waits ~0.1 s.
 _NEW_NODE_WAIT_S = 5.0
+# After a new node answered (its constructor is done): until its publishers are discovered.
+_ANNOUNCED_S = 0.5
 # At most, until what a process that has just ended left in the graph (its endpoints, its
 # node's name) is gone: a little past the discovery lease of course_lib/dds/fastdds_profile.xml
 GONE_WAIT_S = 3.5
@@ -100,16 +102,26 @@ def publishers(client: Any, topic: str = CMD_VEL) -> list[Publisher]:
 def _drives(client: Any, root: int) -> bool:
     """Return whether the node(s) of process `root` publish /cmd_vel, once discovered.
 
-    Every rclpy node publishes /rosout: once that publisher of `root` is seen, so are the
-    endpoints it made with it.
+    Every rclpy node publishes /rosout from its first moment, but makes its other publishers
+    later in its constructor (descriptor_vel declares three parameters first: on a busy host
+    its /rosout was seen before its /cmd_vel existed). A node answers requests only once it
+    spins, after its constructor: once it has answered, its publishers exist, and their
+    announcements follow within _ANNOUNCED_S.
     """
     deadline = time.monotonic() + _NEW_NODE_WAIT_S
+    answered_at: float | None = None
     while True:
         if any(p.runs_in(root) for p in publishers(client)):
             return True
-        seen = any(p.runs_in(root) for p in publishers(client, "/rosout"))
-        if seen or time.monotonic() >= deadline:
+        now = time.monotonic()
+        if now >= deadline or (answered_at is not None and now - answered_at >= _ANNOUNCED_S):
             return False
+        if answered_at is None:
+            nodes = [p.node for p in publishers(client, "/rosout") if p.runs_in(root)]
+            if nodes:
+                client.answers(nodes[0], timeout=deadline - now)  # or not: the deadline holds
+                answered_at = time.monotonic()
+                continue
         time.sleep(_POLL_S)
 
 

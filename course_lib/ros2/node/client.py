@@ -369,6 +369,19 @@ class RosClient:
         clients = [self._client(node_name, s) for s in _SERVICES]
         return wait_until(lambda: all(c.service_is_ready() for c in clients), timeout)
 
+    def answers(self, node_name: str, *, timeout: float) -> bool:
+        """Return whether the node answers a parameter request within `timeout`: a node does
+        once it spins, that is once its constructor (which makes its publishers) is done."""
+        deadline = time.monotonic() + timeout
+        client = self._client(node_name, "list_parameters")
+        if not wait_until(client.service_is_ready, timeout):
+            return False
+        try:
+            self._call_with_retries(client, node_name, ListParameters.Request(depth=1), deadline)
+        except ServiceCallError:
+            return False
+        return True
+
     def _call(self, node_name: str, service: str, request: Any) -> Any:
         client = self._client(node_name, service)
         if not wait_until(client.service_is_ready, SERVICE_WAIT_S):
