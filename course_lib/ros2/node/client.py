@@ -372,23 +372,28 @@ class RosClient:
     def answers(self, node_name: str, *, timeout: float) -> bool:
         """Return whether the node answers a parameter request within `timeout`: a node does
         once it spins, that is once its constructor (which makes its publishers) is done."""
-        deadline = time.monotonic() + timeout
-        client = self._client(node_name, "list_parameters")
-        if not wait_until(client.service_is_ready, timeout):
-            return False
+        request = ListParameters.Request(depth=1)
         try:
-            self._call_with_retries(client, node_name, ListParameters.Request(depth=1), deadline)
+            self._call(node_name, "list_parameters", request, within=timeout)
         except ServiceCallError:
             return False
         return True
 
-    def _call(self, node_name: str, service: str, request: Any) -> Any:
+    def _call(
+        self, node_name: str, service: str, request: Any, *, within: float | None = None
+    ) -> Any:
+        """Call one of the node's parameter services once it is ready; return the response.
+
+        By default the service has SERVICE_WAIT_S to be ready, then CALL_TIMEOUT_S to answer;
+        `within` bounds both together (ServiceCallError once it has passed).
+        """
+        started = time.monotonic()
         client = self._client(node_name, service)
-        if not wait_until(client.service_is_ready, SERVICE_WAIT_S):
+        if not wait_until(client.service_is_ready, SERVICE_WAIT_S if within is None else within):
             raise ServiceCallError(
                 f"Wait for service timed out waiting for parameter services for node {node_name}"
             )
-        deadline = time.monotonic() + CALL_TIMEOUT_S
+        deadline = time.monotonic() + CALL_TIMEOUT_S if within is None else started + within
         if service not in _WRITES:
             return self._call_with_retries(client, node_name, request, deadline)
         # Fast DDS's server waits only 100 ms for our reply reader to match before it drops a
