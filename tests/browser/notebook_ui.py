@@ -75,8 +75,14 @@ def open_notebook(page, base_url: str, path: str, token: str) -> None:  # type: 
 def show_tab(page, name: str, timeout_ms: int = 90_000) -> None:  # type: ignore[no-untyped-def]
     """Put the notebook `name` (opened, maybe behind a restored tab) in front, as a learner's
     click on its tab does, and wait until its own kernel is idle or JupyterLab asks."""
+    from playwright.sync_api import TimeoutError as PlaywrightTimeout
+
     tab = page.locator("#jp-main-dock-panel .lm-TabBar-tab").filter(has_text=name).first
-    tab.click(timeout=60_000)
+    try:
+        tab.click(timeout=60_000)
+    except PlaywrightTimeout:  # a dialog over the tab (seen once on a busy host): say which
+        fail_on_dialog(page, f"opening {name}")
+        raise
     front = page.locator("#jp-main-dock-panel .lm-TabBar-tab.lm-mod-current")
     front.filter(has_text=name).wait_for(timeout=30_000)
     page.locator(f"{_SHOWN} .jp-CodeCell").first.wait_for(timeout=60_000)
