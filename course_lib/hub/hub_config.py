@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from .plan import HubPlan
+from .proxy import proxy_argv
 from .singleuser import DEFAULT_URL
 from .tied import tied_command
 
@@ -52,7 +53,7 @@ def configure(c: Any, plan: HubPlan) -> None:
     c.JupyterHub.cookie_secret_file = str(state / "jupyterhub_cookie_secret")
     c.JupyterHub.cleanup_servers = True  # the hub stopping stops every learner's server
     c.ConfigurableHTTPProxy.api_url = f"http://127.0.0.1:{plan.proxy_api_port}"
-    c.ConfigurableHTTPProxy.command = tied_command(plan.proxy_command)
+    c.ConfigurableHTTPProxy.command = tied_command(*proxy_argv(plan.proxy_command))
     c.ConfigurableHTTPProxy.pid_file = str(state / "proxy.pid")
 
     c.JupyterHub.authenticator_class = plan.authenticator

@@ -9,15 +9,24 @@ from pathlib import Path
 
 from ..core.errors import CourseError
 
-__all__ = ["PINS_DIR", "install_proxy", "missing_npm", "proxy_command"]
+__all__ = ["PINS_DIR", "install_proxy", "missing_npm", "proxy_argv", "proxy_command"]
 
 PINS_DIR = Path(__file__).resolve().parent / "proxy"  # package.json and its lock file
-_PINNED = ("package.json", "package-lock.json")
+# loaded into the proxy: keep-alive connections to Unix-socket targets (read its comment)
+PRELOAD = "unix_keepalive.mjs"
+_PINNED = ("package.json", "package-lock.json", PRELOAD)
 
 
 def proxy_command(environment: Path) -> Path:
     """Return where the proxy's command is once installed under `environment`."""
     return environment / "proxy" / "node_modules" / ".bin" / "configurable-http-proxy"
+
+
+def proxy_argv(command: str | Path) -> list[str]:
+    """Return the command line that runs the installed proxy `command` (proxy_command's path,
+    kept as it is: the launcher knows the proxy by it) with the course's preload."""
+    preload = Path(command).parents[2] / PRELOAD  # environment/proxy/, beside node_modules/
+    return [shutil.which("node") or "node", "--import", preload.as_uri(), str(command)]
 
 
 def missing_npm() -> CourseError | None:

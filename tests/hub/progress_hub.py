@@ -118,8 +118,9 @@ class ClassHub:
         # tied to the hub, as in the class hub: the command names its parent, the hub, so it
         # is written in the hub's own process, where this file runs
         lines += [
+            "from course_lib.hub.proxy import proxy_argv",
             "from course_lib.hub.tied import tied_command",
-            f"c.ConfigurableHTTPProxy.command = tied_command({self.proxy!r})",
+            f"c.ConfigurableHTTPProxy.command = tied_command(*proxy_argv({self.proxy!r}))",
         ]
         return "c = get_config()  # noqa: F821\n" + "\n".join(lines) + "\n"
 
