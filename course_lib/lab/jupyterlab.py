@@ -16,6 +16,7 @@ from ..core.server_urls import SERVER_ROOT_ENV
 from ..processes.children import ChildProcess, spawn
 from ..processes.domain import lease_domain
 from ..processes.lab_markers import lab_clone_marker, lab_marker, lab_start_marker
+from ..processes.shm_segments import sweep_stale_segments
 from ..ros2 import start_daemon
 from ..session.session import session_env
 from .leftovers import clean_up_killed_labs, workspaces_dir
@@ -113,9 +114,9 @@ def run_lab(
     learner runs jupyterhub-singleuser instead of jupyter lab), run in `cwd`: the folder it
     serves (its `root_dir`).
     """
-    note = clean_up_killed_labs()
-    if note:
-        print(note)
+    for note in (clean_up_killed_labs(), sweep_stale_segments().sentence()):
+        if note:
+            print(note)
     lease = lease_domain()
     started = lab_start_marker(os.getpid())
     started.write_text(start_time(os.getpid()) or "")  # first: it vouches for the others

@@ -9,7 +9,8 @@ runs after a grace time gets SIGTERM, then SIGKILL. A process started in a proce
 own (every `spawn`ed child) is signalled with its group, as `ChildProcess.stop` does. A lab
 terminal's shell gets SIGHUP where the others get SIGTERM: what a closing terminal sends, and
 what makes the shell hang up its jobs (an interactive shell ignores SIGTERM, and a shell killed
-by SIGKILL leaves its jobs running).
+by SIGKILL leaves its jobs running). Last, it removes the shared-memory segments that killed
+ROS processes left in /dev/shm (shm_segments.py).
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from dataclasses import dataclass, field
 from ..core.signalling import send
 from ..core.waiting import wait_until
 from .ownership import CourseProcess, course_processes, current_lab, own_programs, read_process
+from .shm_segments import Swept, sweep_stale_segments
 
 __all__ = ["StopReport", "Stopped", "stop_course", "stop_processes"]
 
@@ -46,6 +48,7 @@ class StopReport:
     left: list[CourseProcess] = field(default_factory=list)
     kept_lab: int | None = None
     kept_own: list[CourseProcess] = field(default_factory=list)
+    swept: Swept = field(default_factory=Swept)
 
     def render(self) -> str:
         """Return the text `make stop` prints: one line per process."""
@@ -58,6 +61,8 @@ class StopReport:
         else:
             lines.append("No course process runs.")
         lines += [f"Could not stop {p.name} (pid {p.pid})." for p in self.left]
+        swept = self.swept.sentence()
+        lines += [swept] if swept else []
         if self.kept_own:
             lines.append(
                 f"Left running {len(self.kept_own)} program(s) of yours, started from a lab "
@@ -129,4 +134,5 @@ def stop_course(*, grace_s: float = GRACE_S, rounds: int = 3) -> StopReport:
         stop_processes(found, grace_s, report)
         grace_s = TERM_S
     report.kept_own = own_programs()
+    report.swept = sweep_stale_segments()
     return report

@@ -1,0 +1,94 @@
+"""The shared-memory segments that killed ROS processes leave in /dev/shm, and their removal.
+
+Fast DDS's shared-memory transport gives each participant (each ROS process) a segment of its
+own, `fastrtps_<16 hex digits>` (about 0.5 MiB), and holds an exclusive lock (flock) on the
+empty file `fastrtps_<id>_el` beside it for as long as the participant lives. A participant
+that ends cleanly removes both; one that is killed (a kernel killed with its nodes, a program
+stopped with SIGKILL) never does. /dev/shm is memory: on a host that stays up the leftovers
+add up (1.4 GiB after a day of this course's test runs; a pod's /dev/shm holds 256 MiB).
+
+A segment is a leftover when nobody holds its lock and its lock file is older than a minute (a
+participant locks the file it has just made at once; the minute spares one doing so now). Only
+the current user's segments are touched. The shared port segments (`fastrtps_port<N>`, one per
+port, reused by the next participant) are left alone.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import re
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+__all__ = ["SHM_DIR", "Swept", "sweep_stale_segments"]
+
+SHM_DIR = Path("/dev/shm")
+MIN_AGE_S = 60.0
+_SEGMENT = re.compile(r"fastrtps_[0-9a-f]{16}")
+_LOCK_SUFFIX = "_el"
+
+
+@dataclass(frozen=True)
+class Swept:
+    """The leftover segments removed: how many, and how much memory they held."""
+
+    segments: int = 0
+    size_bytes: int = 0
+
+    def sentence(self) -> str | None:
+        """Return one sentence saying what was removed, or None if nothing was."""
+        if not self.segments:
+            return None
+        mib = self.size_bytes / 2**20
+        return (
+            f"Removed {self.segments} shared-memory segment(s) ({mib:.1f} MiB) that killed ROS "
+            "processes had left in /dev/shm."
+        )
+
+
+def sweep_stale_segments(
+    folder: Path = SHM_DIR, *, min_age_s: float = MIN_AGE_S, now: float | None = None
+) -> Swept:
+    """Remove this user's Fast DDS segments in `folder` whose participant is gone."""
+    now = time.time() if now is None else now
+    segments = size = 0
+    try:
+        lock_files = [p for p in folder.iterdir() if p.name.endswith(_LOCK_SUFFIX)]
+    except OSError:  # no /dev/shm here
+        return Swept()
+    for lock_file in lock_files:
+        segment = lock_file.with_name(lock_file.name.removesuffix(_LOCK_SUFFIX))
+        if not _SEGMENT.fullmatch(segment.name):
+            continue
+        removed = _remove_if_left(segment, lock_file, min_age_s, now)
+        if removed is not None:
+            segments += 1
+            size += removed
+    return Swept(segments, size)
+
+
+def _remove_if_left(segment: Path, lock_file: Path, min_age_s: float, now: float) -> int | None:
+    """Remove `segment` and its lock file if nobody holds the lock; return its size, or None."""
+    try:
+        fd = os.open(lock_file, os.O_RDONLY | os.O_NOFOLLOW)
+    except OSError:
+        return None
+    try:
+        info = os.fstat(fd)
+        if info.st_uid != os.getuid() or now - info.st_mtime < min_age_s:
+            return None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:  # held: its participant lives
+            return None
+        try:
+            size: int | None = segment.stat().st_size
+            segment.unlink()
+        except FileNotFoundError:
+            size = None  # a lock file alone: removed, not counted
+        lock_file.unlink(missing_ok=True)  # while locked: no participant can take it meanwhile
+        return size
+    finally:
+        os.close(fd)
