@@ -129,9 +129,11 @@ def image_pins() -> Path:
         if not folder.is_dir():
             partial = Path(f"{folder}.partial")
             shutil.rmtree(partial, ignore_errors=True)
-            uv = venv_bin_dir() / "uv"  # environment.txt pins it
-            argv = [str(uv), "pip", "install", "--quiet", "--no-deps", "--python", sys.executable]
-            subprocess.run([*argv, "--target", str(partial), "-r", str(PINS)], check=True)
+            into = ["--quiet", "--no-deps", "--target", str(partial), "-r", str(PINS)]
+            uv = [str(venv_bin_dir() / "uv"), "pip", "install", "--python", sys.executable]
+            if subprocess.run([*uv, *into], check=False).returncode != 0:  # as `make setup`:
+                shutil.rmtree(partial, ignore_errors=True)  # pip where only pip reaches them
+                subprocess.run([sys.executable, "-m", "pip", "install", *into], check=True)
             partial.rename(folder)
     return folder
 
