@@ -39,6 +39,7 @@ TITLES = {
 }
 RUN_PREFIX = "[ros2run]:"
 _RCLPY_OWN = re.compile(r"'(use_sim_time|start_type_description_service)' .* is not declared")
+_FAILED_LINES = 8  # what `stop` shows of a node that failed on Ctrl-C: its traceback's end
 
 
 class LogLines:
@@ -204,10 +205,15 @@ class Lesson:
         return LogLines([ln.text for ln in child.lines[start : start + count]])
 
     def stop(self, name: str) -> files.Text:
-        """Stop node process `name` as Ctrl-C in its terminal does; say how it ended."""
+        """Stop node process `name` as Ctrl-C in its terminal does; say how it ended, and
+        what it printed last if it failed (its traceback, as its terminal would show it)."""
         child = self.node(name)
         code = child.stop()
-        return files.Text(f"{name} stopped (Ctrl-C), exit code {code}.")
+        said = f"{name} stopped (Ctrl-C), exit code {code}."
+        if code == 0:
+            return files.Text(said)
+        last = [ln.text for ln in child.lines if ln.text.strip()][-_FAILED_LINES:]
+        return files.Text("\n".join([said, "Its last lines:", *(f"  {text}" for text in last)]))
 
     def exit_report(self, name: str, timeout: float = 10.0) -> LogLines:
         """Wait for node process `name` to end; return its last line and exit code."""
