@@ -7,22 +7,13 @@ sweep that `make stop` and every lab's start run removes that one and keeps the 
 
 from __future__ import annotations
 
-import json
-import os
-import shutil
-import subprocess
-import sys
 from collections.abc import Iterator
-from pathlib import Path
 
 import pytest
-
-from course_lib.processes.domain import lease_domain
-from course_lib.session.session import session_env
+from own_shm import domain_env, run_in_own_shm
 
 pytestmark = [pytest.mark.ros]
 
-REPO = Path(__file__).resolve().parents[3]
 # a node that talks on /chatter and hears it: Fast DDS makes a participant's segment when it
 # first writes to a reader on this host
 NODE = """
@@ -74,24 +65,12 @@ print(json.dumps({"both": sorted(both), "left": sorted(left), "first": first.seg
 
 @pytest.fixture(scope="module")
 def env() -> Iterator[dict[str, str]]:
-    lease = lease_domain({})
-    try:
-        yield {**session_env(lease.domain_id), "PYTHONPATH": str(REPO)}
-    finally:
-        lease.release()
+    with domain_env() as env:
+        yield env
 
 
 def test_a_killed_nodes_segment_is_swept_and_a_live_nodes_kept(env: dict[str, str]) -> None:
-    unshare = shutil.which("unshare")
-    if unshare is None or os.geteuid() != 0:
-        pytest.skip("needs root and `unshare` for a /dev/shm of its own (the CI runs as root)")
-    script = f'mount -t tmpfs tmpfs /dev/shm && exec {sys.executable} -c "$0" "$@"'
-    done = subprocess.run(
-        [unshare, "--mount", "sh", "-c", script, SCENARIO, NODE],
-        env=env, capture_output=True, text=True, timeout=120, check=False,
-    )  # fmt: skip
-    assert done.returncode == 0, done.stderr
-    seen = json.loads(done.stdout.splitlines()[-1])
+    seen = run_in_own_shm(SCENARIO, NODE, env=env, timeout=120)
     assert len(seen["both"]) == 2, seen  # a segment for each node
     assert seen["left"] == seen["both"], "SIGKILL left no segment: nothing to test"
     assert seen["first"] == 1 and len(seen["kept"]) == 1, seen  # the killed node's went

@@ -9,22 +9,14 @@ first three ports are held on purpose, in a /dev/shm of the test's own.
 
 from __future__ import annotations
 
-import json
-import os
-import shutil
-import subprocess
 import sys
 from collections.abc import Iterator
-from pathlib import Path
 
 import pytest
-
-from course_lib.processes.domain import lease_domain
-from course_lib.session.session import session_env
+from own_shm import domain_env, run_in_own_shm
 
 pytestmark = [pytest.mark.ros]
 
-REPO = Path(__file__).resolve().parents[3]
 HELD_PORTS = range(7000, 7003)
 # Holds each port's two locks, then runs the command given to it; prints what it printed.
 HOLDER = f"""
@@ -42,25 +34,13 @@ print(json.dumps([done.returncode, done.stdout, done.stderr]))
 
 @pytest.fixture(scope="module")
 def env() -> Iterator[dict[str, str]]:
-    lease = lease_domain({})
-    try:
-        yield {**session_env(lease.domain_id), "PYTHONPATH": str(REPO)}
-    finally:
-        lease.release()
+    with domain_env() as env:
+        yield env
 
 
 def _in_own_shm(command: list[str], env: dict[str, str]) -> tuple[int, str, str]:
     """Run `command` with a /dev/shm of its own whose first ports' locks are held."""
-    unshare = shutil.which("unshare")
-    if unshare is None or os.geteuid() != 0:
-        pytest.skip("needs root and `unshare` for a /dev/shm of its own (the CI runs as root)")
-    script = f'mount -t tmpfs tmpfs /dev/shm && exec {sys.executable} -c "$0" "$@"'
-    done = subprocess.run(
-        [unshare, "--mount", "sh", "-c", script, HOLDER, *command],
-        env=env, capture_output=True, text=True, timeout=90, check=False,
-    )  # fmt: skip
-    assert done.returncode == 0, done.stderr
-    code, stdout, stderr = json.loads(done.stdout.splitlines()[-1])
+    code, stdout, stderr = run_in_own_shm(HOLDER, *command, env=env, timeout=90)
     return code, stdout, stderr
 
 
