@@ -290,6 +290,14 @@ def test_a_paused_world_hands_its_last_samples_over(session: Session, fresh: Wor
         fresh.drive(0.0, 0.0)
 
 
+def _answered(ask: Callable[[float], float], timeout: float) -> bool:
+    try:
+        ask(timeout)
+    except TimeoutError:
+        return False
+    return True
+
+
 def test_a_predicate_may_wait_on_ros(session: Session, fresh: World) -> None:
     """A wait_for_odom predicate that asks a node for a parameter gets its answer while samples
     keep arriving (the world held its lock during the predicate; the session's ROS thread,
@@ -301,10 +309,18 @@ def test_a_predicate_may_wait_on_ros(session: Session, fresh: World) -> None:
         client = AsyncParameterClient(session.node, "/param_vel_node")
         assert client.wait_for_services(timeout_sec=10.0)
 
+        def velocity(timeout: float) -> float:
+            future = client.get_parameters(["velocity"])
+            return session.wait_future(future, timeout).values[0].double_value
+
+        # "ready" comes before the node knows our reply reader, and Fast DDS drops a reply it
+        # cannot deliver yet (RosClient re-sends for that): one answer first proves the path,
+        # so that the one request in the predicate is answered unless the lock blocks it
+        assert wait_until(lambda: _answered(velocity, 0.5), 10.0), "param_vel never answered"
+
         def asks_ros(_reading: Any) -> bool:
             time.sleep(0.3)  # samples arrive meanwhile: one message per 0.1 simulated s
-            future = client.get_parameters(["velocity"])
-            return session.wait_future(future, 3.0).values[0].double_value == 0.0
+            return velocity(3.0) == 0.0
 
         fresh.wait_for_odom(asks_ros, timeout=10.0)
     finally:
