@@ -122,7 +122,7 @@ def test_understanding_parameters_runs_as_written(terminals) -> None:
     echo.wait_for(r"linear:\n  x: 2\.0\n  y: 0\.0\n  z: 0\.0\nangular:\n  x: 0\.0", start, 5)
 
     # restart turtlesim with the saved parameters
-    assert sim.interrupt()[1] == 0
+    assert sim.interrupt()[1] == 0, sim.output[-3000:]  # the node's own last words
     restarted = sim.start(
         "ros2 run turtlesim turtlesim_node --ros-args --params-file turtlesim.yaml"
     )
@@ -131,5 +131,5 @@ def test_understanding_parameters_runs_as_written(terminals) -> None:
     assert _background(sim.wait_for(WINDOW, restarted).group(1)) == "rgb(150,86,255)"
     teleop.send("q")
     assert teleop.type("true")[1] == 0
-    assert sim.interrupt()[1] == 0
+    assert sim.interrupt()[1] == 0, sim.output[-3000:]  # the node's own last words
     print(f"Understanding parameters: {time.monotonic() - began:.1f} s")
