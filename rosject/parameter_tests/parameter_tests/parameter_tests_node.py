@@ -34,6 +34,10 @@ def main(args=None):
         rclpy.spin(node)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except Exception:
+        if rclpy.ok():
+            raise
+        # Ctrl-C: rclpy's signal thread shut the context down under a running callback
     finally:
         node.destroy_node()
         rclpy.try_shutdown()
