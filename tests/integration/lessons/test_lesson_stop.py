@@ -21,16 +21,16 @@ pytestmark = [pytest.mark.ros]
 # a program that fails when Ctrl-C reaches it, as a node whose shutdown raises does
 FAILS_ON_CTRL_C = """
 import time
-print("Ready", flush=True)
-try:
+try:  # "Ready" inside: a Ctrl-C right after it still lands in the try
+    print("Ready", flush=True)
     time.sleep(60)
 except KeyboardInterrupt:
     raise RuntimeError("publisher's context is invalid") from None
 """
 QUITS_ON_CTRL_C = """
 import time
-print("Ready", flush=True)
-try:
+try:  # "Ready" inside: a Ctrl-C right after it still lands in the try
+    print("Ready", flush=True)
     time.sleep(60)
 except KeyboardInterrupt:
     pass
