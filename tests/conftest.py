@@ -14,6 +14,7 @@ import pytest
 from file_order import file_of, longest_first, read_seconds, write_seconds
 
 from course_lib.core.paths import REPO_ROOT
+from course_lib.ros2.node.direct import TEARDOWN_DUMPS_ENV
 from course_lib.session.session import Session, close_current_session
 
 if os.environ.get("COURSE_TRACE_ALLOCATIONS"):  # e.g. 25: frames kept; slow, so asked for
@@ -67,7 +68,10 @@ def pytest_sessionfinish(session: pytest.Session) -> None:
 
 
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
-    if "PYTEST_XDIST_WORKER" in os.environ or not RERUNS_FILE.exists():
+    if "PYTEST_XDIST_WORKER" in os.environ:
+        return
+    _report_teardowns_cut_short(terminalreporter)
+    if not RERUNS_FILE.exists():
         return
     terminalreporter.section("why tests were rerun (the end of each failure)")
     for block in RERUNS_FILE.read_text(encoding="utf-8").split("===== ")[1:]:
@@ -75,6 +79,24 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
         terminalreporter.write_line("===== " + lines[0])
         for line in lines[1:][-_RERUN_TAIL:]:
             terminalreporter.write_line(line)
+
+
+def _report_teardowns_cut_short(terminalreporter: pytest.TerminalReporter) -> None:
+    """Name the `ros2` commands whose teardown the watchdog cut short (exit code 1 after their
+    output); drop the empty files of those that ended in time."""
+    folder = os.environ.get(TEARDOWN_DUMPS_ENV)
+    if not folder or not Path(folder).is_dir():
+        return
+    cut_short = []
+    for dump in sorted(Path(folder).glob("teardown-*.txt")):
+        if dump.stat().st_size:
+            cut_short.append(dump)
+        else:
+            dump.unlink(missing_ok=True)
+    if cut_short:
+        terminalreporter.section("ros2 commands whose teardown was cut short")
+        for dump in cut_short:
+            terminalreporter.write_line(str(dump))
 
 
 def _sigint_disposition() -> str:

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 
 from ..core.paths import NOTEBOOKS_DIR, REPO_ROOT
+from ..ros2.node.direct import TEARDOWN_DUMPS_ENV
 from .testing import TEST_ENV
 
 __all__ = ["pytest_argv", "run_tests"]
@@ -47,8 +49,15 @@ def pytest_argv(extra: list[str]) -> list[str]:
 
 
 def run_tests(extra: list[str]) -> int:
-    """Run the suite with the test environment; return pytest's exit code."""
-    env = {**os.environ, **TEST_ENV}
+    """Run the suite with the test environment; return pytest's exit code.
+
+    A `ros2` command whose teardown is cut short leaves its threads' tracebacks in
+    test-artifacts/teardown/ (tests/conftest.py names them at the end of the run).
+    """
+    dumps = REPO_ROOT / "test-artifacts" / "teardown"
+    shutil.rmtree(dumps, ignore_errors=True)
+    dumps.mkdir(parents=True)
+    env = {**os.environ, **TEST_ENV, TEARDOWN_DUMPS_ENV: str(dumps)}
     code = subprocess.run(pytest_argv(extra), cwd=REPO_ROOT, env=env, check=False).returncode
     if code == 5:
         print("pytest collected no tests: the suite is missing.", file=sys.stderr)

@@ -10,14 +10,24 @@ from __future__ import annotations
 import faulthandler
 import os
 import sys
-from typing import Any
+from pathlib import Path
+from typing import IO, Any
 
 from ...session.session import SpinningNode
 
-__all__ = ["CLOSE_LIMIT_S", "DirectNode", "cli_node_name", "daemon_node_name"]
+__all__ = [
+    "CLOSE_LIMIT_S",
+    "TEARDOWN_DUMPS_ENV",
+    "DirectNode",
+    "cli_node_name",
+    "daemon_node_name",
+]
 
 NODE_NAME_PREFIX = "_ros2cli"
 CLOSE_LIMIT_S = 5.0  # a command's teardown after its output; then the process ends (exit 1)
+# A folder where a teardown cut short leaves its threads' tracebacks (the suite sets it; a
+# learner's command writes them nowhere): teardown-<pid>.txt, empty when it ended in time.
+TEARDOWN_DUMPS_ENV = "COURSE_TEARDOWN_DUMPS"
 
 
 def cli_node_name(pid: int | None = None) -> str:
@@ -66,8 +76,7 @@ class DirectNode(SpinningNode):
         """
         sys.stdout.flush()
         sys.stderr.flush()
-        quiet = open(os.devnull, "w")  # noqa: SIM115 - kept open for the watchdog to the end
-        faulthandler.dump_traceback_later(CLOSE_LIMIT_S, exit=True, file=quiet)
+        faulthandler.dump_traceback_later(CLOSE_LIMIT_S, exit=True, file=_teardown_dump())
         self.close()
 
     def client(self) -> Any:
@@ -75,3 +84,14 @@ class DirectNode(SpinningNode):
         from .client import RosClient
 
         return RosClient(self.node, self.wait_future, born=self.born)
+
+
+def _teardown_dump() -> IO[str]:
+    """Return the file the teardown's watchdog writes to, kept open to the process's end."""
+    folder = os.environ.get(TEARDOWN_DUMPS_ENV)
+    if folder:
+        try:
+            return open(Path(folder) / f"teardown-{os.getpid()}.txt", "w")
+        except OSError:
+            pass
+    return open(os.devnull, "w")

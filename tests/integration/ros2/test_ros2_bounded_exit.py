@@ -8,11 +8,12 @@ import subprocess
 import sys
 import time
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
 
 from course_lib.processes.domain import lease_domain
-from course_lib.ros2.node.direct import CLOSE_LIMIT_S
+from course_lib.ros2.node.direct import CLOSE_LIMIT_S, TEARDOWN_DUMPS_ENV
 from course_lib.session.session import session_env
 
 pytestmark = pytest.mark.ros
@@ -37,11 +38,11 @@ def domain() -> Iterator[int]:
 
 
 @pytest.mark.parametrize("hang", [False, True])
-def test_the_command_ends_after_its_answer(domain: int, hang: bool) -> None:
+def test_the_command_ends_after_its_answer(domain: int, hang: bool, tmp_path: Path) -> None:
     started = time.monotonic()
     done = subprocess.run(
         [sys.executable, "-c", COMMAND.format(domain=domain, hang=hang)],
-        env=session_env(domain),
+        env={**session_env(domain), TEARDOWN_DUMPS_ENV: str(tmp_path)},
         capture_output=True,
         text=True,
         timeout=60,
@@ -49,8 +50,11 @@ def test_the_command_ends_after_its_answer(domain: int, hang: bool) -> None:
     took = time.monotonic() - started
     assert done.stdout == "the answer\n"
     assert done.stderr == ""  # the watchdog writes no traceback to the terminal
+    (dump,) = tmp_path.glob("teardown-*.txt")  # the suite's: where a teardown stuck
     if hang:  # ended by the watchdog: exit 1, a little after the bound
         assert done.returncode == 1
         assert CLOSE_LIMIT_S <= took < CLOSE_LIMIT_S + 20
+        assert "in <lambda>" in dump.read_text(), dump.read_text()  # the stuck call's frame
     else:
         assert done.returncode == 0
+        assert dump.read_text() == ""
