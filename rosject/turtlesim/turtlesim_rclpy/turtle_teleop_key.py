@@ -87,6 +87,10 @@ def main(args=None):
         _key_loop(node, fd)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except Exception:
+        if rclpy.ok():
+            raise
+        # Ctrl-C: rclpy's signal thread shut the context down under a running callback
     finally:
         if saved is not None:
             termios.tcsetattr(fd, termios.TCSADRAIN, saved)

@@ -21,8 +21,11 @@ pytestmark = [pytest.mark.ros]
 
 # Runs a node's own main(), with a timer that shuts the context down under its own publish.
 SHUT_DOWN_MID_PUBLISH = """
-import importlib, sys
+import importlib, os, sys
 from std_msgs.msg import Empty
+
+silent, kept_open = os.pipe()  # a stdin that stays quiet (the teleop loop waits on keys)
+os.dup2(silent, 0)
 
 module = importlib.import_module(sys.argv[1])
 node_class = getattr(module, sys.argv[2])
@@ -49,6 +52,7 @@ NODES = {
     "descriptor_vel": ("parameter_descriptors.descriptor_vel_node", "DescriptorVel"),
     "turtlesim_node": ("turtlesim_rclpy.turtlesim_node", "Turtlesim"),
     "parameter_blackboard": ("demo_nodes_cpp.parameter_blackboard", "ParameterBlackboard"),
+    "turtle_teleop_key": ("turtlesim_rclpy.turtle_teleop_key", "TeleopTurtle"),
 }
 
 
