@@ -98,10 +98,11 @@ def main(args=None):
         rclpy.spin(node)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
-    except Exception:
+    except Exception as error:
         if rclpy.ok():
             raise
         # Ctrl-C: rclpy's signal thread shut the context down under a running callback
+        node.get_logger().debug(f'Ctrl-C ended a running callback: {error!r}')
     finally:
         node.destroy_node()
         rclpy.try_shutdown()

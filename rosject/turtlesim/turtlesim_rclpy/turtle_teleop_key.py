@@ -87,10 +87,11 @@ def main(args=None):
         _key_loop(node, fd)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
-    except Exception:
+    except Exception as error:
         if rclpy.ok():
             raise
         # Ctrl-C: rclpy's signal thread shut the context down under a running callback
+        node.get_logger().debug(f'Ctrl-C ended a running callback: {error!r}')
     finally:
         if saved is not None:
             termios.tcsetattr(fd, termios.TCSADRAIN, saved)

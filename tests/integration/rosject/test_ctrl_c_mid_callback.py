@@ -43,17 +43,21 @@ def build_with_probe(self, *args, **kwargs):
     self.create_timer(0.3, ctrl_c_mid_publish)
 
 node_class.__init__ = build_with_probe
-del sys.argv[1:]
+sys.argv[1:] = ['--ros-args', '--log-level', sys.argv[3] + ':=debug']  # the node's own log only
 sys.exit(module.main())
 """
 
-NODES = {
-    "param_vel": ("parameter_tests.parameter_tests_node", "VelParam"),
-    "descriptor_vel": ("parameter_descriptors.descriptor_vel_node", "DescriptorVel"),
-    "turtlesim_node": ("turtlesim_rclpy.turtlesim_node", "Turtlesim"),
-    "parameter_blackboard": ("demo_nodes_cpp.parameter_blackboard", "ParameterBlackboard"),
-    "turtle_teleop_key": ("turtlesim_rclpy.turtle_teleop_key", "TeleopTurtle"),
-}
+NODES = {  # executable: (module, node class, node name)
+    "param_vel": ("parameter_tests.parameter_tests_node", "VelParam", "param_vel_node"),
+    "descriptor_vel": (
+        "parameter_descriptors.descriptor_vel_node", "DescriptorVel", "descriptor_vel_node"
+    ),
+    "turtlesim_node": ("turtlesim_rclpy.turtlesim_node", "Turtlesim", "turtlesim"),
+    "parameter_blackboard": (
+        "demo_nodes_cpp.parameter_blackboard", "ParameterBlackboard", "parameter_blackboard"
+    ),
+    "turtle_teleop_key": ("turtlesim_rclpy.turtle_teleop_key", "TeleopTurtle", "teleop_turtle"),
+}  # fmt: skip
 
 
 @pytest.fixture(scope="module")
@@ -67,10 +71,14 @@ def session() -> Iterator[Session]:
 def test_a_shutdown_under_a_running_callback_ends_the_node_cleanly(
     session: Session, name: str
 ) -> None:
-    module, node_class = NODES[name]
+    module, node_class, node_name = NODES[name]
     node = session.spawn(
-        [sys.executable, "-c", SHUT_DOWN_MID_PUBLISH, module, node_class], name=name
+        [sys.executable, "-c", SHUT_DOWN_MID_PUBLISH, module, node_class, node_name], name=name
     )
     assert node.wait_for_line("Shutting the context down", 30.0) is not None, node.text()
     code = node.wait(30.0)
     assert (code, "Traceback" in node.text()) == (0, False), node.text()
+    # what it caught is in its debug log
+    assert 'Ctrl-C ended a running callback: RCLError("Failed to publish:' in node.text(), (
+        node.text()
+    )
