@@ -200,7 +200,7 @@ def main() -> None:
     node = session.spawn([sys.executable, str(NODE)], name="vel")
     try:
         assert client().wait_for_node("/param_vel_node", include_hidden=False, timeout=10)
-        assert wait_until(lambda: daemon_socket(session.domain_id).exists(), 15)
+        assert wait_until(lambda: os.path.exists(daemon_socket(session.domain_id)), 15)
         print(f"domain {session.domain_id}, code and `ros2` of {REPO.name}")
         _terminal(env, "node", "list")  # the daemon answers
         _every_verb(env, runs)

@@ -8,9 +8,8 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from . import ament_index
-from .env_paths import append_once, prepend
 from .errors import ExecutableNotFoundError, PackageNotFoundError
-from .paths import WORKSPACE_INSTALL_DIR
+from .paths import WORKSPACE_INSTALL_DIR, append_once, prepend
 
 __all__ = [
     "find_executable",

@@ -15,8 +15,7 @@ import sysconfig
 from collections.abc import Mapping
 from pathlib import Path
 
-from ..core.env_paths import prepend
-from ..core.paths import PACKAGE_DIR, REPO_ROOT, ROSJECT_DIR, venv_bin_dir
+from ..core.paths import PACKAGE_DIR, REPO_ROOT, ROSJECT_DIR, prepend, venv_bin_dir
 
 __all__ = ["BUILD_STAMP", "build_env", "build_workspace", "cmake_args"]
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import os
 import re
 import shutil
 import signal
@@ -97,4 +98,4 @@ def test_terminal_daemon_outlives_its_terminal_and_dies_with_the_lab(lab: LabSer
     lab.process.send_signal(signal.SIGKILL)  # the lab dies without a word
     assert wait_until(lambda: not pid_alive(daemon), 5), "the daemon outlived its lab"
     # It stopped itself (a daemon killed by someone else leaves its socket behind).
-    assert not daemon_socket(domain).exists()
+    assert not os.path.exists(daemon_socket(domain))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -56,7 +57,7 @@ def daemon(ros_session: Session) -> Iterator[None]:
     from course_lib.ros2.node.connect import daemon_socket
 
     child = start_daemon(ros_session.env)
-    assert wait_until(lambda: daemon_socket(ros_session.domain_id).exists(), 15)
+    assert wait_until(lambda: os.path.exists(daemon_socket(ros_session.domain_id)), 15)
     yield
     child.stop()
 

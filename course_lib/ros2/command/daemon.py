@@ -141,7 +141,7 @@ def _claim(domain: int) -> socket.socket | None:
 
     A daemon that is shutting down still holds the lock: wait for it to go.
     """
-    path = str(daemon_socket(domain))
+    path = daemon_socket(domain)
     fd = os.open(daemon_lock(domain), os.O_RDWR | os.O_CREAT, 0o600)  # inherited by no one
     deadline = time.monotonic() + _CLAIM_WAIT_S
     while True:
@@ -248,7 +248,7 @@ def serve(*, idle_s: float | None = None) -> int:
     server = _claim(domain)
     if server is None:
         return 0
-    path = str(daemon_socket(domain))
+    path = daemon_socket(domain)
     try:
         direct = DirectNode(
             domain_id=domain, node_name=daemon_node_name(domain), type_description_service=False

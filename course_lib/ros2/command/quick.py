@@ -3,18 +3,22 @@
 The ROS wheels re-execute every Python that starts with its site-packages (to set the
 library path rclpy needs), so a plain console script starts Python twice. The launcher
 that `make setup` installs as the venv's `ros2` (`install_launcher`) starts Python with
-`-S` instead: no site-packages, no re-execution, and this module imports only the socket,
-JSON and path modules. Commands the daemon serves (node, param, topic, service, interface
-and the reading pkg verbs) go to the daemon of the command's domain; everything else, and
-every command when no daemon answers, goes to the full command (course_lib.ros2.command.cli,
-started as a console script is), which starts the daemon when a graph verb needs it.
+`-S` instead: no site-packages, no re-execution, and this module imports only the socket
+and JSON modules (no pathlib, no typing). Commands the daemon serves (node, param, topic,
+service, interface and the reading pkg verbs) go to the daemon of the command's domain;
+everything else, and every command when no daemon answers, goes to the full command
+(course_lib.ros2.command.cli, started as a console script is), which starts the daemon when
+a graph verb needs it.
 """
 
 from __future__ import annotations
 
 import os
 import sys
-from pathlib import Path
+
+TYPE_CHECKING = False  # typing is not imported: this module is the terminal's `ros2`
+if TYPE_CHECKING:
+    from pathlib import Path
 
 __all__ = ["daemon_serves", "install_launcher", "main", "maybe_own_node_option"]
 
@@ -109,6 +113,8 @@ sys.exit(main())
 
 def install_launcher(bin_dir: str | Path | None = None) -> Path:
     """Write the `ros2` launcher into the venv's bin folder (replacing the console script)."""
+    from pathlib import Path
+
     from ...core.atomic_files import atomic_write
     from ...core.paths import REPO_ROOT, venv_bin_dir
 

@@ -84,7 +84,7 @@ def spawn_detached(env: Mapping[str, str]) -> None:
     )
 
 
-def _waitconnect(path: Path, timeout: float) -> socket.socket:
+def _waitconnect(path: str, timeout: float) -> socket.socket:
     deadline = time.monotonic() + timeout
     while True:
         try:

@@ -3,8 +3,9 @@
 A command goes as one JSON line (`argv`, `cwd`, `width`, and `env`: the terminal's
 environment, for the verbs that read the ament index); the answer comes back as JSON
 lines, `{"o": text}` for stdout, `{"e": text}` for stderr, then `{"exit": code}`. This
-module imports nothing heavier than `json` and `socket`, so the terminal's `ros2` client
-(course_lib.ros2.command.quick) starts at interpreter speed.
+module imports nothing heavier than `json` and `socket` (no pathlib, no typing: paths are
+strings), so the terminal's `ros2` client (course_lib.ros2.command.quick) starts at
+interpreter speed.
 """
 
 from __future__ import annotations
@@ -12,11 +13,13 @@ from __future__ import annotations
 import json
 import os
 import socket
-from collections.abc import Mapping
-from pathlib import Path
-from typing import TextIO
 
-from ...core.paths import runtime_dir
+from ...core.runtime_folder import runtime_folder
+
+TYPE_CHECKING = False  # typing is not imported: the terminal's client starts with this module
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+    from typing import TextIO
 
 __all__ = [
     "DaemonUnavailable",
@@ -32,24 +35,24 @@ class DaemonUnavailable(Exception):
     """No daemon answers on this domain's socket (and none could be started)."""
 
 
-def daemon_socket(domain_id: int | str) -> Path:
+def daemon_socket(domain_id: int | str) -> str:
     """Return the socket path of the daemon serving `domain_id`."""
-    return runtime_dir() / f"ros2-daemon-{domain_id}.sock"
+    return os.path.join(runtime_folder(), f"ros2-daemon-{domain_id}.sock")
 
 
-def daemon_lock(domain_id: int | str) -> Path:
+def daemon_lock(domain_id: int | str) -> str:
     """Return the lock file a daemon of `domain_id` holds for as long as it lives."""
-    return runtime_dir() / f"ros2-daemon-{domain_id}.lock"
+    return os.path.join(runtime_folder(), f"ros2-daemon-{domain_id}.lock")
 
 
-def connect(path: Path) -> socket.socket:
+def connect(path: str) -> socket.socket:
     """Return a connection to the daemon listening at `path` (DaemonUnavailable if none)."""
     sock = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     try:
-        sock.connect(str(path))
+        sock.connect(path)
     except OSError:
         sock.close()
-        raise DaemonUnavailable(str(path)) from None
+        raise DaemonUnavailable(path) from None
     return sock
 
 

@@ -24,9 +24,9 @@ def test_daemon_exits_cleanly_on_sigint(session: Session, ignored: bool) -> None
     child = spawn(argv, name="ros2-daemon", env=session.env)
     path = daemon_socket(session.domain_id)
     try:
-        assert wait_until(path.exists, 15), "the daemon never listened"
+        assert wait_until(lambda: os.path.exists(path), 15), "the daemon never listened"
         os.kill(child.pid, signal.SIGINT)  # the daemon alone, not its process group
         assert child.wait(timeout=5) == 0, "the daemon ignored SIGINT or died of it"
-        assert not path.exists()
+        assert not os.path.exists(path)
     finally:
         child.stop()

@@ -9,6 +9,7 @@ graphs through rmw's own API, so these tests see the real graph cache with a rea
 
 from __future__ import annotations
 
+import os
 import time
 from collections.abc import Iterator
 
@@ -32,7 +33,7 @@ def lab() -> Iterator[Session]:
     session = get_session()
     daemon = start_daemon(session.env)
     try:
-        assert wait_until(lambda: daemon_socket(session.domain_id).exists(), 15)
+        assert wait_until(lambda: os.path.exists(daemon_socket(session.domain_id)), 15)
         run_console(console_env(session), "ros2 node list")  # the daemon's client is up
         yield session
     finally:

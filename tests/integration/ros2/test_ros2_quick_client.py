@@ -104,6 +104,24 @@ def test_golden_case_through_the_daemon(name: str, ros_session, tutorial_node, d
     (compare2 if name in PART2 else compare)(case, (proc.stdout, proc.stderr, proc.returncode))
 
 
+# What the client must not import: every start of `ros2` would pay for it (on a machine of
+# this kind pathlib costs about 8 ms, typing 10 ms; rclpy and subprocess are the full command's).
+HEAVY = {"pathlib", "typing", "tempfile", "subprocess", "threading", "rclpy"}
+
+
+def test_a_served_command_imports_nothing_heavy(ros_session, tutorial_node, daemon) -> None:  # type: ignore[no-untyped-def]
+    env = {**console_env(ros_session), NO_FALLBACK_ENV: "1", "PYTHONPROFILEIMPORTTIME": "1"}
+    proc = _quick(env, "ros2 param get /param_vel_node velocity")
+    assert proc.stdout == "Double value is: 0.0\n" and proc.returncode == 0, proc.stderr[-2000:]
+    imported = {
+        line.split("|")[-1].strip()
+        for line in proc.stderr.splitlines()
+        if line.startswith("import time:")
+    }
+    assert "course_lib.ros2.node.wire" in imported  # the profile covers the client's imports
+    assert not imported & HEAVY, f"the terminal's client imported {sorted(imported & HEAVY)}"
+
+
 def _maps(pid: int) -> str:
     with open(f"/proc/{pid}/maps") as handle:
         return handle.read()

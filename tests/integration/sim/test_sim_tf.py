@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import os
 import subprocess
 import sys
 from collections.abc import Callable, Iterator
@@ -240,7 +241,7 @@ def test_ros2_topic_echo_tf_once_in_a_terminal(own_session: Session, world: Worl
 
     daemon = start_daemon(own_session.env)
     try:
-        _wait_until(lambda: daemon_socket(own_session.domain_id).exists(), 15)
+        _wait_until(lambda: os.path.exists(daemon_socket(own_session.domain_id)), 15)
         done = subprocess.run(
             [
                 sys.executable,

@@ -61,9 +61,9 @@ def test_open_to_others_is_refused_with_the_fix(tmpdir_is, short_tmp: Path) -> N
 def home_is(monkeypatch: pytest.MonkeyPatch, short_tmp: Path):  # type: ignore[no-untyped-def]
     """Make the temp folders (TMPDIR's and /tmp) one folder and HOME another; return the
     home's runtime folder."""
-    import course_lib.core.paths as paths
+    import course_lib.core.runtime_folder as runtime_folder
 
-    monkeypatch.setattr(paths, "_POSIX_TMP", short_tmp)
+    monkeypatch.setattr(runtime_folder, "_POSIX_TMP", str(short_tmp))
     home = short_tmp / "home"
     home.mkdir()
     monkeypatch.setenv("HOME", str(home))

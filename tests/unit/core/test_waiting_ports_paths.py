@@ -6,7 +6,7 @@ import socket
 
 import pytest
 
-from course_lib.core.env_paths import append_once, prepend
+from course_lib.core.paths import append_once, prepend
 from course_lib.core.ports import free_port
 from course_lib.core.waiting import wait_until
 
