@@ -72,3 +72,33 @@ def test_workspace_env_overlays_the_course_workspace() -> None:
     assert env["PATH"].endswith(":/usr/bin")
     if ament.list_packages(env):  # built: the package's python path comes from its hooks
         assert any(p.endswith("site-packages") for p in env["PYTHONPATH"].split(":"))
+
+
+def _hooked_prefix(root: Path, hooks: dict[str, str]) -> Path:
+    """Return an install prefix whose packages' package.dsv files hold `hooks`."""
+    for package, text in hooks.items():
+        (root / "share/colcon-core/packages").mkdir(parents=True, exist_ok=True)
+        (root / "share/colcon-core/packages" / package).write_text("")
+        (root / "share" / package).mkdir(parents=True, exist_ok=True)
+        (root / "share" / package / "package.dsv").write_text(text)
+    return root
+
+
+def _overlaid(prefix: Path) -> dict[str, str]:
+    env: dict[str, str] = {}
+    ament._overlay(env, prefix)
+    return env
+
+
+def test_package_hooks_are_read_again_when_one_changes(tmp_path: Path) -> None:
+    """The daemon keeps the hooks' actions between commands: a rebuilt, added or removed
+    package must still show in the next command's environment."""
+    prefix = _hooked_prefix(tmp_path, {"a": "set;A_VALUE;one\n"})
+    assert _overlaid(prefix) == {"A_VALUE": str(prefix / "one")}
+    assert _overlaid(prefix) == {"A_VALUE": str(prefix / "one")}  # kept
+    (prefix / "share/a/package.dsv").write_text("set;A_VALUE;three\n")  # rebuilt
+    assert _overlaid(prefix) == {"A_VALUE": str(prefix / "three")}
+    _hooked_prefix(prefix, {"b": "prepend-non-duplicate;B_PATH;lib\n"})
+    assert _overlaid(prefix) == {"A_VALUE": str(prefix / "three"), "B_PATH": str(prefix / "lib")}
+    (prefix / "share/colcon-core/packages/a").unlink()
+    assert _overlaid(prefix) == {"B_PATH": str(prefix / "lib")}
