@@ -33,6 +33,7 @@ __all__ = ["serve", "start_daemon"]
 
 _ACCEPT_TICK_S = 0.5  # how soon the daemon notices that its owner is gone
 _CLAIM_WAIT_S = 10.0  # how long a new daemon waits for a stopping one to exit
+STAGING_SUFFIX = ".new"  # the socket's name until it listens (fits SOCKET_NAME_MAX)
 
 
 def start_daemon(env: Mapping[str, str]) -> ChildProcess:
@@ -153,12 +154,18 @@ def _claim(domain: int) -> socket.socket | None:
                 os.close(fd)
                 return None
             time.sleep(0.02)
+    # Bound under another name and renamed once it listens: the socket's path exists only
+    # while a connection to it is accepted, so its presence means "ready" to every client
+    # (a connection between bind and listen is refused). The rename replaces a killed
+    # daemon's leftover socket.
+    staging = path + STAGING_SUFFIX
     with contextlib.suppress(FileNotFoundError):
-        os.unlink(path)
+        os.unlink(staging)
     server = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
-    server.bind(path)
-    os.chmod(path, 0o600)
+    server.bind(staging)
+    os.chmod(staging, 0o600)
     server.listen(16)
+    os.replace(staging, path)
     return server
 
 
