@@ -60,7 +60,8 @@ def main() -> None:
             if show:  # the simulation process serves the view too (viz.server.serve_in_thread)
                 rate = asyncio.run(viewer_updates(world.viewer.port, 5.0))
                 print(
-                    f"pose updates reaching a viewer client: {rate:5.1f} per second (goal >= 30)"
+                    f"pose updates reaching a viewer client: {rate:5.1f} per second "
+                    f"(goal >= {0.95 * world.settings.rates.viewer_hz:g})"
                 )
                 from sensor_msgs.msg import Image
 

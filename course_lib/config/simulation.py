@@ -89,7 +89,12 @@ class Rates:
     camera_hz: float = setting(
         10.0, help="/camera/image_raw, only while something subscribes", gt=0, le=60
     )
-    viewer_hz: float = setting(30.0, help="the 3D view, in wall-clock time", gt=0, le=120)
+    viewer_hz: float = setting(
+        25.0,
+        help="the 3D view, in wall-clock time (a divisor of odom_hz spaces its frames evenly)",
+        gt=0,
+        le=120,
+    )
 
 
 @dataclass(frozen=True)

@@ -84,7 +84,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     sim = Simulation(settings)
     context = rclpy.Context()
     rclpy.init(args=argv, context=context, signal_handler_options=SignalHandlerOptions.NO)
-    viewer = LiveView(server.zmq_url, sim.model, sim.data) if server is not None else None
+    viewer = None
+    if server is not None:
+        viewer = LiveView(server.zmq_url, sim.model, sim.data, local=server)
     bridge = Bridge(sim, context, viewer=viewer)
     bridge.paused = args.paused
     if args.paused:

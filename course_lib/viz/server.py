@@ -21,6 +21,10 @@ forwarded to the browsers as one websocket message, kept for a browser that conn
 and `watchers` (no data); both answer with the number of browsers connected that someone can
 see, in ASCII digits (a page whose notebook tab is in the background says `hidden` on its
 websocket and gets no poses until it says `shown`).
+
+A simulation that serves its own view hands each frame to the server's thread directly
+(`ThreadedServer.offer_poses`, no socket and no reply to wait for) and reads the count of
+watchers from `ThreadedServer.watchers`.
 """
 
 from __future__ import annotations
@@ -171,6 +175,12 @@ class _SameOriginWebSocket(WebSocketHandler):
             self.hidden = False
         else:
             super().on_message(message)
+            return
+        self.bridge.count_watchers()
+
+    def on_close(self) -> None:
+        super().on_close()
+        self.bridge.count_watchers()
 
 
 def command_socket_url(pid: int | None = None) -> str:
@@ -215,6 +225,7 @@ class LocalBridge(ZMQWebSocketBridge):
         self.web_url = f"http://{host}:{self.fileserver_port}/static/"
         self.tree = SceneTree()
         self.latest_poses: bytes | None = None
+        self.watchers = 0  # pages someone can see; written by the server's thread only
 
     def remove_command_socket(self) -> None:
         """Remove the command socket's file once the server has stopped."""
@@ -224,15 +235,23 @@ class LocalBridge(ZMQWebSocketBridge):
         """Serve the course's two commands (module docstring), meshcat's own otherwise."""
         command = frames[0]
         if command == POSES_COMMAND and len(frames) == 3:
-            self.latest_poses = frames[2]
-            for websocket in self._seen():
-                websocket.write_message(frames[2], binary=True)
+            self.forward_poses(frames[2])
         elif command != WATCHERS_COMMAND:
             if command == b"delete":
                 self.latest_poses = None  # a scene drawn again starts from its own poses
             super().handle_zmq(frames)
             return
-        self.zmq_socket.send(str(len(self._seen())).encode())
+        self.zmq_socket.send(str(self.watchers).encode())
+
+    def forward_poses(self, message: bytes) -> None:
+        """Send one frame's poses to the pages someone sees; keep them for later pages."""
+        self.latest_poses = message
+        for websocket in self._seen():
+            websocket.write_message(message, binary=True)
+
+    def count_watchers(self) -> None:
+        """Count again the pages someone can see (after one connected, left, hid, showed)."""
+        self.watchers = len(self._seen())
 
     def _seen(self) -> list[WebSocketHandler]:
         """Return the connected pages that someone can see (see _SameOriginWebSocket)."""
@@ -243,6 +262,7 @@ class LocalBridge(ZMQWebSocketBridge):
         super().send_scene(websocket)
         if self.latest_poses is not None:
             websocket.write_message(self.latest_poses, binary=True)
+        self.count_watchers()
 
 
 def default_origins() -> list[str]:
@@ -258,6 +278,19 @@ class ThreadedServer:
         self.thread = thread
         self.zmq_url = bridge.zmq_url
         self.web_url = bridge.web_url
+
+    @property
+    def watchers(self) -> int:
+        """Return how many pages someone can see are connected (0 once the server stopped)."""
+        return self.bridge.watchers if self.thread.is_alive() else 0
+
+    def offer_poses(self, message: bytes) -> bool:
+        """From any thread: have the server forward one frame's poses (a `set_transforms`
+        message); False if it no longer serves. Nothing waits for the server's thread."""
+        if not self.thread.is_alive():
+            return False
+        self.bridge.ioloop.add_callback(self.bridge.forward_poses, message)
+        return True
 
     def stop(self, timeout: float = 5.0) -> None:
         """Stop serving and remove the command socket's file; idempotent."""

@@ -3,7 +3,9 @@
 A frame's poses (the moving bodies and the TF frames) go as one message, only while a browser
 watches the view (the server says how many do) and only when the robot moved since the last
 frame sent; with nobody watching, the server is asked every `probe_period_s` whether someone
-does now (it keeps the latest poses for a browser that connects in between).
+does now (it keeps the latest poses for a browser that connects in between). A server in this
+process (`serve_in_thread`, the simulation's `--serve-view`) is handed the poses directly:
+the physics loop neither waits for its reply nor asks it who watches.
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from meshcat.commands import Delete
 from meshcat.path import Path
 
 from ...viz.scene import ROOT, body_paths, camera_commands, moving_bodies, scene_commands
-from ...viz.server import POSES_COMMAND, WATCHERS_COMMAND
+from ...viz.server import POSES_COMMAND, WATCHERS_COMMAND, ThreadedServer
 from ..world.frames import robot_frames
 from .tf_frames import TF_ROOT, TfView
 
@@ -67,7 +69,11 @@ class ServerWindow:
 
 
 class LiveView:
-    """Draw the model and its TF frames once, then send the moving poses on `update`."""
+    """Draw the model and its TF frames once, then send the moving poses on `update`.
+
+    `zmq_url` is the server's command socket; `local` the same server when it runs in this
+    process, which then takes each frame's poses without a round trip.
+    """
 
     def __init__(
         self,
@@ -76,9 +82,11 @@ class LiveView:
         data: mujoco.MjData,
         *,
         probe_period_s: float = _PROBE_PERIOD_S,
+        local: ThreadedServer | None = None,
     ) -> None:
         self.zmq_url = zmq_url
         self.probe_period_s = probe_period_s
+        self.local = local
         self.window = ServerWindow(zmq_url)
         paths = body_paths(model)
         self._moving = moving_bodies(model)
@@ -126,6 +134,8 @@ class LiveView:
         A busy server (several views open on a loaded machine) may miss the timeout once: the
         request socket is then replaced, so the view catches up instead of freezing for good.
         """
+        if self.local is not None:
+            return self._offer(data, self.local)
         now = time.monotonic()
         if now < self._retry_at:
             return False
@@ -147,6 +157,17 @@ class LiveView:
             self.window = ServerWindow(self.zmq_url)  # a timed-out REQ socket cannot send again
             return False
         self.failed, self._misses = False, 0
+        return True
+
+    def _offer(self, data: mujoco.MjData, server: ThreadedServer) -> bool:
+        """Hand the poses to a server of this process if a browser watches and they changed."""
+        self.watchers = server.watchers
+        if self.watchers and self._moved(data.qpos):
+            if not server.offer_poses(self.poses(data)):
+                self.failed = True
+                return False
+            self._sent_qpos = data.qpos.copy()
+            self.updates += 1
         return True
 
     def _moved(self, qpos: np.ndarray) -> bool:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
-__all__ = ["Pacer", "Schedule"]
+__all__ = ["Cadence", "Pacer", "Schedule"]
 
 
 class Pacer:
@@ -72,3 +72,26 @@ class Schedule:
     def rate_hz(self, name: str) -> float:
         """Return the actual rate of a stream after rounding to whole steps."""
         return 1.0 / (self.periods[name] * self.timestep_s) if name in self.periods else math.nan
+
+
+class Cadence:
+    """Wall-clock slots every `period_s` for work done at the physics loop's wakes (the view).
+
+    A wake up to `slack_s` before a slot takes it, as the loop's wakes jitter: a period that is
+    a whole number of the loop's periods (25 Hz on a 50 Hz loop) then gives evenly spaced
+    slots. A wake more than a period late starts the slots again from itself.
+    """
+
+    def __init__(self, period_s: float, slack_s: float) -> None:
+        self.period_s = period_s
+        self.slack_s = slack_s
+        self._next: float | None = None
+
+    def due(self, now: float) -> bool:
+        """Return True, and take the slot, if one is due at wall time `now`."""
+        if self._next is not None and now < self._next - self.slack_s:
+            return False
+        self._next = (self._next or now) + self.period_s
+        if self._next <= now:  # far behind (a busy machine): no burst to catch up
+            self._next = now + self.period_s
+        return True

@@ -10,6 +10,7 @@ import urllib.request
 
 import pytest
 
+from course_lib.config.simulation import load_simulation_settings
 from course_lib.core.ports import free_port
 from course_lib.notebook import start_world
 from course_lib.session.session import Session
@@ -71,6 +72,7 @@ def test_view_works_through_jupyter_server_proxy() -> None:
         script = urllib.request.urlopen(f"{base}main.min.js?token={TOKEN}", timeout=10).read()
         assert len(script) > 500_000
         socket_url = f"ws://127.0.0.1:{jupyter_port}/proxy/{world.viewer.port}/?token={TOKEN}"
-        assert asyncio.run(_transforms_through(socket_url, 1.0)) >= 30
+        rate = load_simulation_settings().rates.viewer_hz
+        assert asyncio.run(_transforms_through(socket_url, 1.0)) >= 0.8 * rate
     finally:
         session.close()

@@ -21,7 +21,7 @@ from course_lib.core.waiting import wait_until
 from course_lib.sim.view.live import LiveView
 from course_lib.sim.world.model import build_model
 from course_lib.tools.testing import independent_env
-from course_lib.viz.server import WATCHERS_COMMAND
+from course_lib.viz.server import WATCHERS_COMMAND, serve_in_thread
 
 pytestmark = [
     # meshcat's Visualizer(window=...) is given our window; its own socket is never opened
@@ -91,9 +91,21 @@ class Browser:
         self.thread.join(5)
 
 
-@pytest.fixture
-def view() -> Iterator[tuple[LiveView, mujoco.MjModel, mujoco.MjData, int]]:
-    """A meshcat server (this test's child) and a LiveView drawing the robot on it."""
+def _robot() -> tuple[mujoco.MjModel, mujoco.MjData]:
+    model = build_model()
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    return model, data
+
+
+@pytest.fixture(params=["server process", "server thread"])
+def view(request) -> Iterator[tuple[LiveView, mujoco.MjModel, mujoco.MjData, int]]:  # type: ignore[no-untyped-def]
+    """A meshcat server and a LiveView drawing the robot on it: the server a child process
+    (poses over its command socket) or a thread of this process, as in the simulation (poses
+    handed over directly)."""
+    if request.param == "server thread":
+        yield from _view_on_a_thread()
+        return
     server = subprocess.Popen(
         [sys.executable, "-m", "course_lib.viz.server"],
         stdout=subprocess.PIPE,
@@ -106,9 +118,7 @@ def view() -> Iterator[tuple[LiveView, mujoco.MjModel, mujoco.MjData, int]]:
         zmq_url = server.stdout.readline().strip().split("=", 1)[1]
         web_url = server.stdout.readline().strip().split("=", 1)[1]
         port = int(web_url.rsplit(":", 1)[1].split("/")[0])
-        model = build_model()
-        data = mujoco.MjData(model)
-        mujoco.mj_forward(model, data)
+        model, data = _robot()
         live = LiveView(zmq_url, model, data, probe_period_s=PROBE_S)
         try:
             yield live, model, data, port
@@ -119,6 +129,19 @@ def view() -> Iterator[tuple[LiveView, mujoco.MjModel, mujoco.MjData, int]]:
         server.wait(timeout=10)
         if server.stdout is not None:
             server.stdout.close()
+
+
+def _view_on_a_thread() -> Iterator[tuple[LiveView, mujoco.MjModel, mujoco.MjData, int]]:
+    server = serve_in_thread()
+    try:
+        model, data = _robot()
+        live = LiveView(server.zmq_url, model, data, probe_period_s=PROBE_S, local=server)
+        try:
+            yield live, model, data, int(server.web_url.rsplit(":", 1)[1].split("/")[0])
+        finally:
+            live.close()
+    finally:
+        server.stop()
 
 
 def _server_says_watchers(live: LiveView, count: int) -> None:
@@ -211,3 +234,29 @@ def test_a_hidden_page_gets_no_poses_and_is_no_watcher(view) -> None:  # type: i
     finally:
         seen.close()
         hidden.close()
+
+
+def test_the_simulation_never_waits_for_its_own_view_server() -> None:
+    """The physics loop hands a frame to a server thread of its own process and goes on: a
+    server busy for seconds (its thread stalled) costs the loop nothing, and the frame
+    arrives once the server runs again."""
+    views = _view_on_a_thread()
+    live, model, data, port = next(views)
+    browser = Browser(port)
+    try:
+        _tick(live, model, data, moving=True, ticks=10)
+        assert live.watchers == 1
+        before = len(browser.poses_after(1))
+        assert live.local is not None
+        stalled = threading.Event()
+        live.local.bridge.ioloop.add_callback(stalled.wait, 3.0)
+        data.qpos[0] += 0.01
+        mujoco.mj_forward(model, data)
+        started = time.monotonic()
+        assert live.update(data)
+        assert time.monotonic() - started < 0.5, "the loop waited for a stalled view server"
+        stalled.set()
+        assert len(browser.poses_after(before + 1)) == before + 1
+    finally:
+        browser.close()
+        views.close()
