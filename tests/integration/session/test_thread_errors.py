@@ -7,6 +7,7 @@ import threading
 
 import pytest
 import rclpy
+from rclpy.clock import Clock, ClockType
 
 from course_lib.config.simulation import load_simulation_settings
 from course_lib.core.errors import SessionThreadError
@@ -65,8 +66,9 @@ def test_next_command_reports_then_first_cell_starts_afresh(
 
 
 @pytest.mark.sim
+@pytest.mark.parametrize("node", ["mujoco", "turtlebot3_diff_drive"])  # each ROS thread's
 def test_sim_bridge_thread_error_stops_the_world(
-    session: Session, caplog: pytest.LogCaptureFixture
+    session: Session, caplog: pytest.LogCaptureFixture, node: str
 ) -> None:
     """The bridge's loop ends (the process then exits 1) instead of ignoring every command."""
     from course_lib.sim.ros.bridge import Bridge
@@ -76,7 +78,9 @@ def test_sim_bridge_thread_error_stops_the_world(
     rclpy.init(context=context, domain_id=session.domain_id)
     bridge = Bridge(Simulation(load_simulation_settings()), context)
     try:
-        bridge.nodes["mujoco"].create_timer(0.01, _broken_callback)
+        # A steady clock: these nodes' own clocks follow a /clock they do not subscribe.
+        steady = Clock(clock_type=ClockType.STEADY_TIME)
+        bridge.nodes[node].create_timer(0.01, _broken_callback, clock=steady)
         with caplog.at_level(logging.ERROR, logger="course_lib.sim.ros.bridge"):
             loop = threading.Thread(target=bridge.run, daemon=True)
             loop.start()
