@@ -278,6 +278,8 @@ class ThreadedServer:
         self.thread = thread
         self.zmq_url = bridge.zmq_url
         self.web_url = bridge.web_url
+        self._lock = threading.Lock()
+        self._pending: bytes | None = None  # the latest frame the server's thread has not sent
 
     @property
     def watchers(self) -> int:
@@ -286,11 +288,30 @@ class ThreadedServer:
 
     def offer_poses(self, message: bytes) -> bool:
         """From any thread: have the server forward one frame's poses (a `set_transforms`
-        message); False if it no longer serves. Nothing waits for the server's thread."""
+        message); False if it no longer serves. Nothing waits for the server's thread.
+
+        A frame replaces one the server's thread has not sent yet: a server that falls behind
+        sends the latest poses once, not a burst of stale ones, and nothing piles up.
+        """
         if not self.thread.is_alive():
             return False
-        self.bridge.ioloop.add_callback(self.bridge.forward_poses, message)
+        with self._lock:
+            queued = self._pending is not None
+            self._pending = message
+        if not queued:
+            self.bridge.ioloop.add_callback(self._forward_pending)
         return True
+
+    @property
+    def sending(self) -> bool:
+        """Return True while an offered frame waits for the server's thread."""
+        return self._pending is not None
+
+    def _forward_pending(self) -> None:
+        with self._lock:
+            message, self._pending = self._pending, None
+        if message is not None:
+            self.bridge.forward_poses(message)
 
     def stop(self, timeout: float = 5.0) -> None:
         """Stop serving and remove the command socket's file; idempotent."""

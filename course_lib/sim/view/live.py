@@ -147,8 +147,7 @@ class LiveView:
                 self.watchers = int(self.window.request(WATCHERS_COMMAND))
             if self.watchers and self._moved(data.qpos):
                 self.watchers = int(self.window.request(POSES_COMMAND, b"", self.poses(data)))
-                self._sent_qpos = data.qpos.copy()
-                self.updates += 1
+                self._sent(data)
         except zmq.ZMQError:
             self.failed = True
             self._misses += 1  # back off, so a server that is gone stalls the physics rarely
@@ -166,9 +165,13 @@ class LiveView:
             if not server.offer_poses(self.poses(data)):
                 self.failed = True
                 return False
-            self._sent_qpos = data.qpos.copy()
-            self.updates += 1
+            self._sent(data)
         return True
+
+    def _sent(self, data: mujoco.MjData) -> None:
+        """Record a frame sent: the pose the next frame is compared with."""
+        self._sent_qpos = data.qpos.copy()
+        self.updates += 1
 
     def _moved(self, qpos: np.ndarray) -> bool:
         sent = self._sent_qpos

@@ -91,7 +91,7 @@ class Cadence:
         """Return True, and take the slot, if one is due at wall time `now`."""
         if self._next is not None and now < self._next - self.slack_s:
             return False
-        self._next = (self._next or now) + self.period_s
+        self._next = (now if self._next is None else self._next) + self.period_s
         if self._next <= now:  # far behind (a busy machine): no burst to catch up
             self._next = now + self.period_s
         return True
