@@ -6,6 +6,7 @@ Nothing here imports rclpy, so a terminal command costs a Python start and one r
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import json
 import os
 import socket
@@ -18,7 +19,14 @@ from pathlib import Path
 from ...core import procfs
 from ...core.waiting import wait_until
 from ...processes.children import OWNER_ENV, owner_tag
-from .wire import DaemonUnavailable, connect, daemon_lock, daemon_socket, request
+from .wire import (
+    DaemonUnavailable,
+    connect,
+    daemon_lock,
+    daemon_socket,
+    daemon_start_lock,
+    request,
+)
 
 __all__ = [
     "DaemonUnavailable",
@@ -95,13 +103,38 @@ def _waitconnect(path: str, timeout: float) -> socket.socket:
         time.sleep(0.01)
 
 
+def _start_once(env: Mapping[str, str]) -> bool:
+    """Start env's domain's daemon unless one answers, and wait until it does; False if one
+    answered already.
+
+    Commands that start at the same moment (first calls in several terminals) take turns
+    here, so only the first starts a daemon: a daemon started for nothing still took its
+    second to start, and one that lost the race while the winner was being stopped became a
+    second daemon nobody asked for.
+    """
+    path = daemon_socket(env["ROS_DOMAIN_ID"])
+    fd = os.open(daemon_start_lock(env["ROS_DOMAIN_ID"]), os.O_RDWR | os.O_CREAT, 0o600)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)  # held for at most START_TIMEOUT_S by the one ahead
+        try:
+            connect(path).close()
+            return False
+        except DaemonUnavailable:
+            pass
+        spawn_detached(env)
+        _waitconnect(path, START_TIMEOUT_S).close()
+        return True
+    finally:
+        os.close(fd)  # releases the lock
+
+
 def connect_or_start(domain_id: str, env: Mapping[str, str]) -> socket.socket:
     """Return a connection to this domain's daemon, starting one if none answers."""
     path = daemon_socket(domain_id)
     with contextlib.suppress(DaemonUnavailable):
         return connect(path)
-    spawn_detached(env)
-    return _waitconnect(path, START_TIMEOUT_S)
+    _start_once({**env, "ROS_DOMAIN_ID": domain_id})
+    return connect(path)
 
 
 def daemon_running(domain_id: int | str) -> bool:
@@ -115,15 +148,7 @@ def daemon_running(domain_id: int | str) -> bool:
 
 def start_detached(env: Mapping[str, str]) -> bool:
     """Start env's domain's daemon and wait until it answers; False if one was running."""
-    path = daemon_socket(env["ROS_DOMAIN_ID"])
-    try:
-        connect(path).close()
-        return False
-    except DaemonUnavailable:
-        pass
-    spawn_detached(env)
-    _waitconnect(path, START_TIMEOUT_S).close()
-    return True
+    return _start_once(env)
 
 
 def stop_daemon(domain_id: int | str, *, timeout: float = STOP_TIMEOUT_S) -> bool:

@@ -26,6 +26,7 @@ __all__ = [
     "connect",
     "daemon_lock",
     "daemon_socket",
+    "daemon_start_lock",
     "request",
     "terminal_width",
 ]
@@ -43,6 +44,11 @@ def daemon_socket(domain_id: int | str) -> str:
 def daemon_lock(domain_id: int | str) -> str:
     """Return the lock file a daemon of `domain_id` holds for as long as it lives."""
     return os.path.join(runtime_folder(), f"ros2-daemon-{domain_id}.lock")
+
+
+def daemon_start_lock(domain_id: int | str) -> str:
+    """Return the lock file commands take in turns to start a daemon of `domain_id`."""
+    return os.path.join(runtime_folder(), f"ros2-daemon-{domain_id}.start")
 
 
 def connect(path: str) -> socket.socket:

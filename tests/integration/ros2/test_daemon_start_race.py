@@ -1,0 +1,65 @@
+"""Commands that find no daemon at the same moment start one daemon between them.
+
+Run 40 of stop 43: four racing first calls each started a daemon; the three that lost were
+still starting when the winner was stopped, and one of them became a daemon nobody asked for
+(test_ros2_first_call then failed every rerun). Starting now takes turns on a lock file.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+from collections.abc import Iterator
+
+import pytest
+
+from course_lib.core.waiting import wait_until
+from course_lib.processes.domain import lease_domain
+from course_lib.ros2.node import connect
+from course_lib.session.session import session_env
+
+pytestmark = [
+    pytest.mark.ros,
+    # the daemon outlives its Popen on purpose (spawn_detached): Python warns at collection
+    pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning"),
+]
+
+
+@pytest.fixture
+def domain_env() -> Iterator[dict[str, str]]:
+    lease = lease_domain({})
+    try:
+        yield session_env(lease.domain_id)
+    finally:
+        connect.stop_daemon(lease.domain_id)
+        for pid in connect.daemon_pids(lease.domain_id):
+            os.kill(pid, signal.SIGKILL)
+        lease.release()
+
+
+def test_racing_starts_spawn_one_daemon(domain_env, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    spawned: list[int] = []
+    real_spawn = connect.spawn_detached
+
+    def counting_spawn(env) -> None:  # type: ignore[no-untyped-def]
+        spawned.append(1)
+        real_spawn(env)
+
+    monkeypatch.setattr(connect, "spawn_detached", counting_spawn)
+    gate = threading.Barrier(4)
+    started: list[bool] = []
+
+    def first_call() -> None:
+        gate.wait()
+        started.append(connect.start_detached(domain_env))
+
+    threads = [threading.Thread(target=first_call) for _ in range(4)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join(30)
+    assert len(spawned) == 1, f"{len(spawned)} daemons started for one domain"
+    assert sorted(started) == [False, False, False, True]
+    domain = domain_env["ROS_DOMAIN_ID"]
+    assert wait_until(lambda: len(connect.daemon_pids(domain)) == 1, 10)
