@@ -16,6 +16,9 @@ session leader never writes it, which would lower its whole session (its parent'
 from __future__ import annotations
 
 import os
+import random
+import threading
+import time
 from pathlib import Path
 
 __all__ = ["BACKGROUND_NICENESS", "autogroup_niceness", "yield_cpu"]
@@ -29,17 +32,40 @@ _AUTOGROUP = Path("/proc/self/autogroup")
 
 def yield_cpu(niceness: int = BACKGROUND_NICENESS) -> None:
     """Lower this process's priority to `niceness` (never raise it), and its session's too
-    if it leads one. Call before starting threads: those started later inherit it."""
+    if it leads one. Call before starting threads: those started later inherit it.
+
+    Linux lets an ordinary account change an autogroup's niceness once per 100 ms on the
+    whole host (EAGAIN otherwise): a class whose worlds start together retries in a thread.
+    """
     current = os.getpriority(os.PRIO_PROCESS, 0)
     if current < niceness:
         os.setpriority(os.PRIO_PROCESS, 0, niceness)
     if os.getsid(0) != os.getpid():
         return
+    if not _lower_autogroup(niceness):
+        threading.Thread(
+            target=_retry_autogroup, args=(niceness,), name="yield-cpu", daemon=True
+        ).start()
+
+
+def _lower_autogroup(niceness: int) -> bool:
+    """Lower this session's autogroup to `niceness`; False if Linux said "not now"."""
     group = autogroup_niceness()
-    if group is not None and group < niceness:
-        try:
-            _AUTOGROUP.write_text(str(niceness))
-        except OSError:  # a kernel without autogroups, or a read-only /proc
+    if group is None or group >= niceness:
+        return True
+    try:
+        _AUTOGROUP.write_text(str(niceness))
+    except BlockingIOError:  # EAGAIN: another change on this host within 100 ms
+        return False
+    except OSError:  # a kernel without autogroups, or a read-only /proc: nothing to lower
+        return True
+    return True
+
+
+def _retry_autogroup(niceness: int, attempts: int = 100) -> None:
+    for _ in range(attempts):
+        time.sleep(random.uniform(0.1, 0.2))  # apart from the others retrying
+        if _lower_autogroup(niceness):
             return
 
 
