@@ -40,6 +40,8 @@ def claimed(
         return opened[-1]
 
     leftover_ino = None
+    if os.path.lexists(path):  # a daemon killed earlier on this machine left it: not "fresh"
+        os.unlink(path)  # the domain is leased to this test, so no daemon of it runs
     if request.param:
         with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as killed:
             killed.bind(path)  # a killed daemon's socket, left behind, answering nobody
