@@ -1,1 +1,1 @@
-"""Child processes: start them in their own group, own them, stop them; ROS domains; priority."""
+"""Child processes: start them in their own group, own them, stop them; ROS domains."""

@@ -13,7 +13,6 @@ from typing import TYPE_CHECKING
 
 from ..config.simulation import SimulationSettings, load_simulation_settings
 from ..core.errors import CourseError
-from ..processes.priority import yield_cpu
 
 if TYPE_CHECKING:
     from ..viz.server import ThreadedServer
@@ -65,7 +64,6 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     1 when a ROS callback raised: its traceback is logged, then this last line names it.
     """
-    yield_cpu()  # first: every thread the world starts inherits it
     import rclpy
     from rclpy.signals import SignalHandlerOptions
     from rclpy.utilities import remove_ros_args

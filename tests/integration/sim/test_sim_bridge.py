@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import os
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -14,7 +13,6 @@ import pytest
 
 from course_lib.core.waiting import wait_until
 from course_lib.notebook import World, start_world
-from course_lib.processes.priority import BACKGROUND_NICENESS, autogroup_niceness
 from course_lib.session.session import Session
 
 pytestmark = [pytest.mark.ros, pytest.mark.sim]
@@ -72,21 +70,6 @@ def _last_message(session: Session, kind: type, topic: str, qos: Any = 10) -> Ca
 
 def test_start_world_is_idempotent(session: Session, world: World) -> None:
     assert start_world(session, show=False) is world
-
-
-def test_the_simulation_yields_the_cpu_to_what_a_learner_waits_for(world: World) -> None:
-    """Every thread of the world runs at the background niceness, and so does its session
-    (between sessions, Linux schedules by the session's autogroup)."""
-    pid = world.process.pid
-    niceness = {
-        tid.name: int((tid / "stat").read_text().rsplit(")", 1)[1].split()[16])
-        for tid in Path(f"/proc/{pid}/task").iterdir()
-    }
-    assert len(niceness) > 3, niceness  # ROS, DDS and the physics loop: all started after it
-    assert set(niceness.values()) == {BACKGROUND_NICENESS}, niceness
-    group = autogroup_niceness(pid)
-    assert os.getsid(pid) == pid
-    assert group is None or group == BACKGROUND_NICENESS
 
 
 def test_topics_are_the_tutorial_worlds(session: Session, world: World) -> None:
