@@ -103,9 +103,9 @@ def _waitconnect(path: str, timeout: float) -> socket.socket:
         time.sleep(0.01)
 
 
-def _start_once(env: Mapping[str, str]) -> bool:
-    """Start env's domain's daemon unless one answers, and wait until it does; False if one
-    answered already.
+def _start_once(env: Mapping[str, str]) -> tuple[socket.socket, bool]:
+    """Connect to env's domain's daemon, starting it first unless one answers; return the
+    connection and whether this call started the daemon.
 
     Commands that start at the same moment (first calls in several terminals) take turns
     here, so only the first starts a daemon: a daemon started for nothing still took its
@@ -116,25 +116,19 @@ def _start_once(env: Mapping[str, str]) -> bool:
     fd = os.open(daemon_start_lock(env["ROS_DOMAIN_ID"]), os.O_RDWR | os.O_CREAT, 0o600)
     try:
         fcntl.flock(fd, fcntl.LOCK_EX)  # held for at most START_TIMEOUT_S by the one ahead
-        try:
-            connect(path).close()
-            return False
-        except DaemonUnavailable:
-            pass
+        with contextlib.suppress(DaemonUnavailable):
+            return connect(path), False
         spawn_detached(env)
-        _waitconnect(path, START_TIMEOUT_S).close()
-        return True
+        return _waitconnect(path, START_TIMEOUT_S), True
     finally:
         os.close(fd)  # releases the lock
 
 
 def connect_or_start(domain_id: str, env: Mapping[str, str]) -> socket.socket:
     """Return a connection to this domain's daemon, starting one if none answers."""
-    path = daemon_socket(domain_id)
     with contextlib.suppress(DaemonUnavailable):
-        return connect(path)
-    _start_once({**env, "ROS_DOMAIN_ID": domain_id})
-    return connect(path)
+        return connect(daemon_socket(domain_id))
+    return _start_once({**env, "ROS_DOMAIN_ID": domain_id})[0]
 
 
 def daemon_running(domain_id: int | str) -> bool:
@@ -148,7 +142,9 @@ def daemon_running(domain_id: int | str) -> bool:
 
 def start_detached(env: Mapping[str, str]) -> bool:
     """Start env's domain's daemon and wait until it answers; False if one was running."""
-    return _start_once(env)
+    sock, started = _start_once(env)
+    sock.close()
+    return started
 
 
 def stop_daemon(domain_id: int | str, *, timeout: float = STOP_TIMEOUT_S) -> bool:

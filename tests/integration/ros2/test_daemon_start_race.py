@@ -38,7 +38,18 @@ def domain_env() -> Iterator[dict[str, str]]:
         lease.release()
 
 
-def test_racing_starts_spawn_one_daemon(domain_env, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+def _terminal_first_call(env: dict[str, str]) -> bool:
+    """What a terminal's `ros2` does (command.cli): connect, starting the daemon if need be."""
+    connect.connect_or_start(env["ROS_DOMAIN_ID"], env).close()
+    return True
+
+
+@pytest.mark.parametrize(
+    "first_call",
+    [connect.start_detached, _terminal_first_call],
+    ids=["ros2-daemon-start", "any-command"],
+)
+def test_racing_starts_spawn_one_daemon(domain_env, monkeypatch, first_call) -> None:  # type: ignore[no-untyped-def]
     spawned: list[int] = []
     real_spawn = connect.spawn_detached
 
@@ -50,16 +61,19 @@ def test_racing_starts_spawn_one_daemon(domain_env, monkeypatch) -> None:  # typ
     gate = threading.Barrier(4)
     started: list[bool] = []
 
-    def first_call() -> None:
+    def racer() -> None:
         gate.wait()
-        started.append(connect.start_detached(domain_env))
+        started.append(first_call(domain_env))
 
-    threads = [threading.Thread(target=first_call) for _ in range(4)]
+    threads = [threading.Thread(target=racer) for _ in range(4)]
     for thread in threads:
         thread.start()
     for thread in threads:
         thread.join(30)
     assert len(spawned) == 1, f"{len(spawned)} daemons started for one domain"
-    assert sorted(started) == [False, False, False, True]
+    if first_call is connect.start_detached:  # says whether it started the daemon
+        assert sorted(started) == [False, False, False, True]
+    else:
+        assert started == [True] * 4  # every command got its connection
     domain = domain_env["ROS_DOMAIN_ID"]
     assert wait_until(lambda: len(connect.daemon_pids(domain)) == 1, 10)
