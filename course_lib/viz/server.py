@@ -308,10 +308,11 @@ class ThreadedServer:
         return self._pending is not None
 
     def _forward_pending(self) -> None:
+        """On the server's thread: send the frame offered last (one call per frame offered
+        while none was pending, so there is always one)."""
         with self._lock:
             message, self._pending = self._pending, None
-        if message is not None:
-            self.bridge.forward_poses(message)
+        self.bridge.forward_poses(message)  # type: ignore[arg-type]
 
     def stop(self, timeout: float = 5.0) -> None:
         """Stop serving and remove the command socket's file; idempotent."""
