@@ -52,7 +52,27 @@ def wait_all_ran(page, artifacts: Path) -> None:  # type: ignore[no-untyped-def]
     errors = page.locator('[data-mime-type="application/vnd.jupyter.error"]')
     assert errors.count() == 0, f"a cell failed: {errors.first.inner_text()[:2000]}"
     never_ran = page.evaluate(f"() => {_PROMPTS}.filter(t => t === '[ ]:').length")
-    assert never_ran == 0, f"{never_ran} code cells never ran: {artifacts / 'page_done.png'}"
+    assert never_ran == 0, (
+        f"{never_ran} code cells never ran: {artifacts / 'page_done.png'}\n{_what_ran_where(page)}"
+    )
+
+
+def _what_ran_where(page) -> str:  # type: ignore[no-untyped-def]
+    """Say which notebook is in front, its prompts, and the server's sessions and kernels (a
+    run whose kernel was replaced or restarted ends with its cells cleared and no error)."""
+    return page.evaluate(
+        f"""async () => {{
+          const tab = document.querySelector('#jp-main-dock-panel .lm-TabBar-tab.lm-mod-current');
+          const config = document.getElementById('jupyter-config-data');
+          const base = JSON.parse(config.textContent).baseUrl;
+          const sessions = await (await fetch(`${{base}}api/sessions`)).json();
+          return JSON.stringify({{
+            front: tab && tab.textContent, prompts: {_PROMPTS},
+            sessions: sessions.map(s => [s.path, s.kernel.id, s.kernel.execution_state,
+                                          s.kernel.connections, s.kernel.last_activity]),
+          }}, null, 1);
+        }}"""
+    )
 
 
 def run_cell(page, source: str) -> None:  # type: ignore[no-untyped-def]
