@@ -34,6 +34,7 @@ __all__ = [
     "DiscoveryTiming",
     "GraphView",
     "domain_newcomers",
+    "present_participants",
     "requested_spin_time",
     "timing_from_profile",
     "wait_joined",
@@ -101,6 +102,18 @@ def participant_prefix(endpoint_gid: Sequence[int]) -> tuple[int, ...]:
 def prefix_pid(prefix: Sequence[int]) -> int:
     """Return the (low 16 bits of the) pid a Fast DDS GUID prefix names: bytes 4-5."""
     return prefix[4] | prefix[5] << 8
+
+
+def present_participants(seen: Iterable[Sequence[int]], live_pids: Iterable[int]) -> int:
+    """Count the seen participants (GUID prefixes) whose process still runs.
+
+    A participant that has left stays seen until its removal arrives (until its lease ends,
+    if it was killed): counted, it would stand in for one bound on this host but not seen
+    yet. Four first calls at once: one that had ended stood in for the tutorial node, and
+    `ros2 topic list -t --no-daemon` listed only its own topics.
+    """
+    live = {pid & 0xFFFF for pid in live_pids}
+    return sum(prefix_pid(prefix) in live for prefix in seen)
 
 
 def bound_participants(domain_id: int, ports: Iterable[int]) -> int:

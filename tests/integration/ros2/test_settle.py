@@ -5,13 +5,16 @@ The wait's rules are unit-tested on a fake clock (tests/unit/ros2/node/test_ros2
 
 from __future__ import annotations
 
+import signal
+import socket
+import sys
 import time
 
 import pytest
 
 from course_lib.core.waiting import wait_until
 from course_lib.ros2.node.client import RosClient
-from course_lib.ros2.node.discovery import FASTDDS_DEFAULT_ANNOUNCEMENT_S
+from course_lib.ros2.node.discovery import FASTDDS_DEFAULT_ANNOUNCEMENT_S, read_bound_participants
 from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
@@ -115,3 +118,44 @@ def test_a_fresh_client_finds_a_node_whose_process_is_slow_to_answer(session: Se
             late.close()
     finally:
         child.stop()
+
+
+# A node of its own process (its pid is its participant's), printing once it is up.
+PLAIN_NODE = (
+    "import rclpy; rclpy.init(); node = rclpy.create_node('leaving_node'); "
+    "print('up', flush=True); rclpy.spin(node)"
+)
+
+
+def _hold_participant_port(domain_id: int) -> socket.socket:
+    """Bind a free participant port of the domain: bound on this host, never seen in DDS."""
+    base = 7400 + 250 * domain_id
+    for index in range(119, 0, -1):  # the last participant ports first
+        sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        try:
+            sock.bind(("0.0.0.0", base + 10 + 2 * index))
+            return sock
+        except OSError:
+            sock.close()
+    raise AssertionError(f"no free participant port in domain {domain_id}")
+
+
+def test_a_participant_that_has_left_does_not_stand_in_for_one_not_seen() -> None:
+    """A client still sees a killed process's participant until its lease ends; meanwhile it
+    must not count it for one bound on this host but not seen yet (here a held port)."""
+    own, client = _young_client()
+    unseen = _hold_participant_port(own.domain_id)
+    leaving = own.spawn([sys.executable, "-c", PLAIN_NODE], name="leaving")
+    try:
+        assert leaving.wait_for_line("up", 30), leaving.text()
+        assert wait_until(lambda: "/leaving_node" in _names(client), 15)
+        assert wait_until(lambda: client.graph_view().missing_participants == 1, 10)
+        bound = read_bound_participants(own.domain_id)
+        leaving.send_signal(signal.SIGKILL, reason="a participant that leaves without a word")
+        assert wait_until(lambda: read_bound_participants(own.domain_id) == bound - 1, 5)
+        view = client.graph_view()
+        assert leaving.pid & 0xFFFF in view.participant_pids, "its lease ended already"
+        assert view.missing_participants == 1, view
+    finally:
+        unseen.close()
+        own.close()

@@ -260,6 +260,21 @@ def test_a_participant_names_its_process() -> None:
     assert prefix_pid([1, 15, 120, 253, 0x99, 0x6A, 151, 51, 0, 0, 0, 0]) == 0x6A99
 
 
+def test_a_participant_whose_process_has_ended_is_not_counted_as_seen() -> None:
+    """Three bound on the host (the client, a command still running, the node not seen yet);
+    seen: the client, the command, and one that has ended (its removal not arrived yet)."""
+    from course_lib.ros2.node.discovery import present_participants
+
+    def prefix(pid: int) -> tuple[int, ...]:
+        return (1, 15, 120, 253, pid & 0xFF, pid >> 8 & 0xFF, 151, 51, 0, 0, 0, 0)
+
+    seen = [prefix(0x1234), prefix(0x2345), prefix(0x3456)]
+    running = [0x1234, 0x2345, 0x7777, 0x10000 + 0x0042]  # the node: 0x7777
+    assert present_participants(seen, running) == 2  # the node is one missing of 3 bound
+    assert present_participants(seen, [*running, 0x3456]) == 3
+    assert present_participants([prefix(0x0042)], running) == 1  # pid above 65535: low 16 bits
+
+
 def test_ros2_commands_are_not_nodes_starting() -> None:
     from course_lib.ros2.node.discovery import ros2_client_command
 
