@@ -52,6 +52,7 @@ from meshcat.servers.zmqserver import (
     ZMQWebSocketBridge,
 )
 
+from ..core import procfs
 from ..core.paths import runtime_dir
 
 __all__ = [
@@ -64,6 +65,7 @@ __all__ = [
     "default_origins",
     "main",
     "origin_allowed",
+    "remove_dead_command_sockets",
     "serve_in_thread",
 ]
 
@@ -184,10 +186,43 @@ class _SameOriginWebSocket(WebSocketHandler):
 
 
 def command_socket_url(pid: int | None = None) -> str:
-    """Return the ZMQ address of this process's command socket: private to this user."""
+    """Return the ZMQ address of this process's command socket: private to this user.
+
+    Sockets that killed servers left are removed first (else one file per killed world, for
+    ever: 1012 of them in a runtime folder after two days of tests).
+    """
+    remove_dead_command_sockets()
     path = runtime_dir() / f"meshcat-{pid or os.getpid()}.sock"
     path.unlink(missing_ok=True)  # a socket left by a killed server of a reused pid
     return f"ipc://{path}"
+
+
+def remove_dead_command_sockets() -> list[Path]:
+    """Remove the command sockets of servers that are gone; return them.
+
+    Gone: no process has the pid in the file's name, and nothing answers on the socket (a
+    server of another PID namespace sharing this folder still answers, and is kept).
+    """
+    removed = []
+    for path in runtime_dir().glob("meshcat-*.sock"):
+        pid = path.name.removeprefix("meshcat-").removesuffix(".sock")
+        if not pid.isdigit() or procfs.PROC.joinpath(pid).exists() or _answers(path):
+            continue
+        path.unlink(missing_ok=True)
+        removed.append(path)
+    return removed
+
+
+def _answers(path: Path) -> bool:
+    """Return whether a process listens on the Unix socket at `path`."""
+    import socket
+
+    with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as probe:
+        try:
+            probe.connect(str(path))
+        except OSError:  # refused (nobody listens), or gone meanwhile
+            return False
+    return True
 
 
 class LocalBridge(ZMQWebSocketBridge):
