@@ -54,6 +54,7 @@ from meshcat.servers.zmqserver import (
 
 from ..core import procfs
 from ..core.paths import runtime_dir
+from ..core.ports import unix_socket_answers
 
 __all__ = [
     "ORIGINS_ENV",
@@ -206,23 +207,11 @@ def remove_dead_command_sockets() -> list[Path]:
     removed = []
     for path in runtime_dir().glob("meshcat-*.sock"):
         pid = path.name.removeprefix("meshcat-").removesuffix(".sock")
-        if not pid.isdigit() or procfs.PROC.joinpath(pid).exists() or _answers(path):
+        if not pid.isdigit() or procfs.pid_alive(int(pid)) or unix_socket_answers(path):
             continue
         path.unlink(missing_ok=True)
         removed.append(path)
     return removed
-
-
-def _answers(path: Path) -> bool:
-    """Return whether a process listens on the Unix socket at `path`."""
-    import socket
-
-    with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as probe:
-        try:
-            probe.connect(str(path))
-        except OSError:  # refused (nobody listens), or gone meanwhile
-            return False
-    return True
 
 
 class LocalBridge(ZMQWebSocketBridge):

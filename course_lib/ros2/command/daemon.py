@@ -23,6 +23,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ...core.param_journal import acting_door
+from ...core.ports import unix_socket_answers
 from ...processes.children import OWNER_ENV, ChildProcess, owner_alive, spawn
 from ...processes.ownership import LAB_ENV
 from ..node.connect import IDLE_ENV, SHUTDOWN, daemon_argv, daemon_lock, daemon_socket
@@ -126,17 +127,6 @@ def same_user(conn: socket.socket) -> bool:
     return uid == os.getuid()
 
 
-def _answers(path: str) -> bool:
-    probe = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
-    try:
-        probe.connect(path)
-        return True
-    except OSError:
-        return False
-    finally:
-        probe.close()
-
-
 def _claim(domain: int) -> socket.socket | None:
     """Bind the domain's socket, holding its lock for life; None if a daemon serves it.
 
@@ -150,7 +140,7 @@ def _claim(domain: int) -> socket.socket | None:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             break
         except BlockingIOError:
-            if _answers(path) or time.monotonic() >= deadline:
+            if unix_socket_answers(path) or time.monotonic() >= deadline:
                 os.close(fd)
                 return None
             time.sleep(0.02)

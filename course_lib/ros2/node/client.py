@@ -15,7 +15,7 @@ from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
 from rclpy.node import NodeNameNonExistentError
 from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
 
-from ...core import param_journal, procfs
+from ...core import param_journal
 from ...core.waiting import wait_until
 from ..results import Descriptor, NodeInfo, NodeName, ParamRange, SetResult, TopicInfo
 from ..values import VALUE_FIELDS, ParamValue, journal_value, value_from_msg
@@ -26,9 +26,9 @@ from .discovery import (
     domain_newcomers,
     participant_prefix,
     prefix_pid,
-    present_participants,
     profile_timing,
     read_bound_participants,
+    unseen_participants,
     wait_joined,
     wait_settled,
     without_ghosts,
@@ -181,9 +181,7 @@ class RosClient:
         unknown = sum(info.node_name == UNKNOWN_NODE for info in endpoints)
         bound = read_bound_participants(self._domain_id)
         seen = {participant_prefix(info.endpoint_gid) for info in endpoints}
-        missing = None
-        if bound is not None:
-            missing = max(0, bound - present_participants(seen, procfs.pids()))
+        missing = None if bound is None else unseen_participants(bound, seen)
         nodes = frozenset(n.full_name for n in self.node_names(include_hidden=True))
         pids = frozenset(prefix_pid(prefix) for prefix in seen)
         return GraphView(nodes, frozenset(topics), unknown, missing, len(endpoints), pids)
@@ -259,10 +257,8 @@ class RosClient:
                 full = info.node_namespace.rstrip("/") + "/" + info.node_name
                 holders.setdefault(full, set()).add(participant_prefix(info.endpoint_gid))
         bound = read_bound_participants(self._domain_id)
-        if bound is None:
-            return holders, False
         seen = set().union(*holders.values()) if holders else set()
-        return holders, present_participants(seen, procfs.pids()) == bound
+        return holders, bound is not None and unseen_participants(bound, seen) == 0
 
     def wait_for_node(
         self,

@@ -19,7 +19,7 @@ from __future__ import annotations
 import os
 import time
 from collections import Counter
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -37,6 +37,7 @@ __all__ = [
     "present_participants",
     "requested_spin_time",
     "timing_from_profile",
+    "unseen_participants",
     "wait_joined",
     "wait_settled",
     "without_ghosts",
@@ -114,6 +115,19 @@ def present_participants(seen: Iterable[Sequence[int]], live_pids: Iterable[int]
     """
     live = {pid & 0xFFFF for pid in live_pids}
     return sum(prefix_pid(prefix) in live for prefix in seen)
+
+
+def unseen_participants(
+    bound: int,
+    seen: Collection[Sequence[int]],
+    live_pids: Callable[[], Iterable[int]] = procfs.pids,
+) -> int:
+    """Return how many of the `bound` participants on this host are not among `seen` (GUID
+    prefixes); the processes are listed only when the count alone says none is missing
+    (see `present_participants`)."""
+    if len(seen) < bound:
+        return bound - len(seen)
+    return max(0, bound - present_participants(seen, live_pids()))
 
 
 def bound_participants(domain_id: int, ports: Iterable[int]) -> int:

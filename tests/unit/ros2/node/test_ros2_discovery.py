@@ -263,7 +263,7 @@ def test_a_participant_names_its_process() -> None:
 def test_a_participant_whose_process_has_ended_is_not_counted_as_seen() -> None:
     """Three bound on the host (the client, a command still running, the node not seen yet);
     seen: the client, the command, and one that has ended (its removal not arrived yet)."""
-    from course_lib.ros2.node.discovery import present_participants
+    from course_lib.ros2.node.discovery import present_participants, unseen_participants
 
     def prefix(pid: int) -> tuple[int, ...]:
         return (1, 15, 120, 253, pid & 0xFF, pid >> 8 & 0xFF, 151, 51, 0, 0, 0, 0)
@@ -273,6 +273,12 @@ def test_a_participant_whose_process_has_ended_is_not_counted_as_seen() -> None:
     assert present_participants(seen, running) == 2  # the node is one missing of 3 bound
     assert present_participants(seen, [*running, 0x3456]) == 3
     assert present_participants([prefix(0x0042)], running) == 1  # pid above 65535: low 16 bits
+    assert unseen_participants(3, seen, lambda: running) == 1  # a count said 0
+
+    def unlisted() -> list[int]:
+        raise AssertionError("the processes were listed though the count says one is missing")
+
+    assert unseen_participants(4, seen, unlisted) == 1
 
 
 def test_ros2_commands_are_not_nodes_starting() -> None:
