@@ -29,6 +29,7 @@ __all__ = [
     "environ",
     "fd_targets",
     "holder_start",
+    "network_namespace",
     "owner_uid",
     "parent_pid",
     "pid_alive",
@@ -118,6 +119,15 @@ def pid_namespace() -> str:
         return os.readlink(PROC / "self" / "ns" / "pid").strip("pid:[]")
     except OSError:
         return ""
+
+
+def network_namespace(pid: int | str = "self") -> str | None:
+    """Return the id of the network namespace of `pid` (ports and ROS domains mean nothing
+    outside it), or None if it is gone or not ours to read."""
+    try:
+        return os.readlink(PROC / str(pid) / "ns" / "net")
+    except OSError:
+        return None
 
 
 def fd_targets(pid: int) -> list[str]:

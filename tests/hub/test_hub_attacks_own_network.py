@@ -46,7 +46,10 @@ def test_hub_attacks_in_a_network_of_their_own() -> None:
         sys.executable, "-c", _ENTER, "-m", "pytest", str(ATTACKS), "-q", "-rA",
         "-p", "no:cacheprovider", "--timeout", "600",
     ]  # fmt: skip
-    env = {**os.environ, OWN_NETWORK_ENV: "1"}
+    # a session of its own: none of this run's pytest settings (PYTEST_ADDOPTS="-n 4" gave it
+    # four workers, each starting a hub for the same four accounts)
+    env = {k: v for k, v in os.environ.items() if not k.startswith("PYTEST_")}
+    env[OWN_NETWORK_ENV] = "1"
     result = subprocess.run(
         argv, cwd=REPO_ROOT, env=env, capture_output=True, text=True, timeout=1400
     )

@@ -171,10 +171,14 @@ def stop_daemon(domain_id: int | str, *, timeout: float = STOP_TIMEOUT_S) -> boo
 
 
 def daemon_pids(domain_id: int | str) -> list[int]:
-    """Return the pids of this host's daemon processes serving `domain_id` (whoever owns them)."""
+    """Return the pids of the daemon processes serving `domain_id` on this network (whoever
+    owns them): a network namespace of its own has its own domains, so the same number there
+    is another domain (a hub's learner in the hub attack tests' own network)."""
+    network = procfs.network_namespace()
     return [
         pid
         for pid in procfs.pids()
         if "course_lib.ros2.command.daemon" in (procfs.cmdline(pid) or ())
         and procfs.environ(pid).get("ROS_DOMAIN_ID") == str(domain_id)
+        and procfs.network_namespace(pid) == network
     ]

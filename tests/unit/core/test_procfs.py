@@ -20,6 +20,8 @@ def test_this_process_reads_as_itself() -> None:
     assert (procfs.cmdline(me) or ("",))[0].rsplit("/", 1)[-1].startswith("python")
     assert procfs.environ(me).get("PATH") == os.environ.get("PATH")
     assert me in procfs.pids()
+    assert procfs.network_namespace(me) == procfs.network_namespace()
+    assert (procfs.network_namespace(me) or "").startswith("net:[")
 
 
 def test_a_missing_process_reads_as_none() -> None:
@@ -27,6 +29,7 @@ def test_a_missing_process_reads_as_none() -> None:
     assert procfs.stat_fields(gone) is None and not procfs.pid_alive(gone)
     assert procfs.parent_pid(gone) == 0 and procfs.cmdline(gone) is None
     assert procfs.environ(gone) == {} and procfs.owner_uid(gone) is None
+    assert procfs.network_namespace(gone) is None
 
 
 def test_udp_tables_give_local_ports_of_ipv4_and_ipv6() -> None:
