@@ -75,7 +75,18 @@ def _create(name: str, password: str | None) -> None:
         capture_output=True,
         text=True,
     )
-    home = Path(pwd.getpwnam(name).pw_dir)
+    account = pwd.getpwnam(name)
+    home = Path(account.pw_dir)
+    owner = home.stat().st_uid
+    if owner != account.pw_uid:
+        # useradd keeps a folder that was there (a removed account's, with its files) and only
+        # warns: the learner could not enter it and their server would never start
+        subprocess.run(["userdel", name], check=False, capture_output=True)
+        raise CourseError(
+            f"Could not create the Unix account {name!r}: its home folder {home} is there "
+            f"already, owned by uid {owner} (a removed account's?).",
+            hint="move that folder away (or give it to an account yourself), then retry.",
+        )
     home.chmod(0o700)  # a learner's notebooks and files are theirs alone
     if password is not None:
         subprocess.run(

@@ -63,10 +63,18 @@ def processes_of(name: str) -> list[str]:
     return found
 
 
+def _new_home(name: str) -> Path:
+    """Return the home folder useradd gives a new account `name`."""
+    told = subprocess.run(["useradd", "-D"], capture_output=True, text=True, check=True).stdout
+    return Path(dict(line.split("=", 1) for line in told.split())["HOME"]) / name
+
+
 def remove_account(name: str) -> None:
-    """Remove a test account and its home (its processes first: it is the test's own)."""
+    """Remove a test account and its home (its processes first: it is the test's own); a home
+    an interrupted run left without its account too (the hub refuses to create one over it)."""
     uid = uid_of(name)
     if uid is None:
+        shutil.rmtree(_new_home(name), ignore_errors=True)
         return
     for line in processes_of(name):
         with contextlib.suppress(OSError):

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import os
+import pwd
 import secrets
+import shutil
 import subprocess
 from pathlib import Path
 
@@ -28,3 +30,24 @@ def test_a_failing_account_keeps_the_passwords_of_those_created_before(tmp_path:
     finally:
         subprocess.run(["userdel", "--remove", first], check=False, capture_output=True)
         subprocess.run(["groupdel", second], check=False, capture_output=True)
+
+
+def test_a_home_folder_left_by_a_removed_account_is_refused_and_kept(tmp_path: Path) -> None:
+    """useradd keeps a folder that is there and only warns; the learner could not enter it,
+    and their server never started (the hub waited 120 s, then said it did not respond)."""
+    name = f"crs{secrets.token_hex(4)}"
+    base = subprocess.run(["useradd", "-D"], capture_output=True, text=True, check=True).stdout
+    home = Path(dict(line.split("=", 1) for line in base.split())["HOME"]) / name
+    home.mkdir(mode=0o700)
+    (home / "notes.txt").write_text("theirs\n")
+    os.chown(home, 3_999_999, 3_999_999)  # no account has it: a removed account's uid
+    try:
+        with pytest.raises(CourseError, match=f"{home} is there already, owned by uid 3999999"):
+            ensure_accounts([name], tmp_path, with_password=True)
+        with pytest.raises(KeyError):
+            pwd.getpwnam(name)  # no account left half made
+        assert (home / "notes.txt").read_text() == "theirs\n"
+        assert not (tmp_path / PASSWORDS_FILE).exists()
+    finally:
+        subprocess.run(["userdel", name], check=False, capture_output=True)
+        shutil.rmtree(home)
