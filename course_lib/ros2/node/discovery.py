@@ -105,29 +105,40 @@ def prefix_pid(prefix: Sequence[int]) -> int:
     return prefix[4] | prefix[5] << 8
 
 
-def present_participants(seen: Iterable[Sequence[int]], live_pids: Iterable[int]) -> int:
+def present_participants(
+    seen: Iterable[Sequence[int]],
+    live_pids: Iterable[int],
+    running: Callable[[int], bool] = procfs.pid_alive,
+) -> int:
     """Count the seen participants (GUID prefixes) whose process still runs.
 
     A participant that has left stays seen until its removal arrives (until its lease ends,
     if it was killed): counted, it would stand in for one bound on this host but not seen
     yet. Four first calls at once: one that had ended stood in for the tutorial node, and
-    `ros2 topic list -t --no-daemon` listed only its own topics.
+    `ros2 topic list -t --no-daemon` listed only its own topics. A killed process that its
+    parent has not reaped yet is listed still, but its ports are free: `running` (asked only
+    of the pids a seen participant may name) counts it as gone.
     """
-    live = {pid & 0xFFFF for pid in live_pids}
-    return sum(prefix_pid(prefix) in live for prefix in seen)
+    by_low_bits: dict[int, list[int]] = {}
+    for pid in live_pids:
+        by_low_bits.setdefault(pid & 0xFFFF, []).append(pid)
+    return sum(
+        any(running(pid) for pid in by_low_bits.get(prefix_pid(prefix), ())) for prefix in seen
+    )
 
 
 def unseen_participants(
     bound: int,
     seen: Collection[Sequence[int]],
     live_pids: Callable[[], Iterable[int]] = procfs.pids,
+    running: Callable[[int], bool] = procfs.pid_alive,
 ) -> int:
     """Return how many of the `bound` participants on this host are not among `seen` (GUID
     prefixes); the processes are listed only when the count alone says none is missing
     (see `present_participants`)."""
     if len(seen) < bound:
         return bound - len(seen)
-    return max(0, bound - present_participants(seen, live_pids()))
+    return max(0, bound - present_participants(seen, live_pids(), running))
 
 
 def bound_participants(domain_id: int, ports: Iterable[int]) -> int:

@@ -5,13 +5,14 @@ The wait's rules are unit-tested on a fake clock (tests/unit/ros2/node/test_ros2
 
 from __future__ import annotations
 
-import signal
 import socket
+import subprocess
 import sys
 import time
 
 import pytest
 
+from course_lib.core import procfs
 from course_lib.core.waiting import wait_until
 from course_lib.ros2.node.client import RosClient
 from course_lib.ros2.node.discovery import FASTDDS_DEFAULT_ANNOUNCEMENT_S, read_bound_participants
@@ -140,22 +141,32 @@ def _hold_participant_port(domain_id: int) -> socket.socket:
     raise AssertionError(f"no free participant port in domain {domain_id}")
 
 
-def test_a_participant_that_has_left_does_not_stand_in_for_one_not_seen() -> None:
+@pytest.mark.parametrize("reaped", [True, False], ids=["reaped", "not-reaped-yet"])
+def test_a_participant_that_has_left_does_not_stand_in_for_one_not_seen(reaped: bool) -> None:
     """A client still sees a killed process's participant until its lease ends; meanwhile it
-    must not count it for one bound on this host but not seen yet (here a held port)."""
+    must not count it for one bound on this host but not seen yet (here a held port). Until its
+    parent reaps it, the killed process is still listed, its ports free (run 23 of stop 46)."""
     own, client = _young_client()
     unseen = _hold_participant_port(own.domain_id)
-    leaving = own.spawn([sys.executable, "-c", PLAIN_NODE], name="leaving")
+    # a plain Popen is reaped only when waited for; a course child, by its owner at once
+    leaving = subprocess.Popen(
+        [sys.executable, "-c", PLAIN_NODE], env=own.env, stdout=subprocess.PIPE, text=True
+    )
     try:
-        assert leaving.wait_for_line("up", 30), leaving.text()
+        assert leaving.stdout is not None and leaving.stdout.readline() == "up\n"
         assert wait_until(lambda: "/leaving_node" in _names(client), 15)
         assert wait_until(lambda: client.graph_view().missing_participants == 1, 10)
         bound = read_bound_participants(own.domain_id)
-        leaving.send_signal(signal.SIGKILL, reason="a participant that leaves without a word")
+        leaving.kill()  # a participant that leaves without a word
+        if reaped:
+            leaving.wait()
         assert wait_until(lambda: read_bound_participants(own.domain_id) == bound - 1, 5)
+        assert reaped or procfs.stat_fields(leaving.pid)[0] == "Z"  # type: ignore[index]
         view = client.graph_view()
         assert leaving.pid & 0xFFFF in view.participant_pids, "its lease ended already"
         assert view.missing_participants == 1, view
     finally:
+        leaving.kill()
+        leaving.communicate()
         unseen.close()
         own.close()

@@ -270,15 +270,26 @@ def test_a_participant_whose_process_has_ended_is_not_counted_as_seen() -> None:
 
     seen = [prefix(0x1234), prefix(0x2345), prefix(0x3456)]
     running = [0x1234, 0x2345, 0x7777, 0x10000 + 0x0042]  # the node: 0x7777
-    assert present_participants(seen, running) == 2  # the node is one missing of 3 bound
-    assert present_participants(seen, [*running, 0x3456]) == 3
-    assert present_participants([prefix(0x0042)], running) == 1  # pid above 65535: low 16 bits
-    assert unseen_participants(3, seen, lambda: running) == 1  # a count said 0
+
+    def each_runs(pid: int) -> bool:
+        return True
+
+    assert present_participants(seen, running, each_runs) == 2  # one missing of 3 bound
+    assert present_participants(seen, [*running, 0x3456], each_runs) == 3
+    assert present_participants([prefix(0x0042)], running, each_runs) == 1  # low 16 bits
+    assert unseen_participants(3, seen, lambda: running, each_runs) == 1  # a count said 0
 
     def unlisted() -> list[int]:
         raise AssertionError("the processes were listed though the count says one is missing")
 
-    assert unseen_participants(4, seen, unlisted) == 1
+    assert unseen_participants(4, seen, unlisted, each_runs) == 1
+
+    # killed, not reaped yet: still listed, but no longer running (its ports are free)
+    def zombie_3456(pid: int) -> bool:
+        return pid != 0x3456
+
+    assert present_participants(seen, [*running, 0x3456], zombie_3456) == 2
+    assert unseen_participants(3, seen, lambda: [*running, 0x3456], zombie_3456) == 1
 
 
 def test_ros2_commands_are_not_nodes_starting() -> None:
