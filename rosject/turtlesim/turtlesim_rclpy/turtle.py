@@ -105,8 +105,9 @@ class TurtleInterfaces:
         getattr(goal_handle, outcome)()
         done.set_result(result)
 
-    def update(self, dt, canvas):
-        """Teleport, rotate and move for one step, draw, publish; return True if it changed."""
+    def update(self, dt, canvas, at=None):
+        """Teleport, rotate and move for the step due at `at` (ns of the node's clock; now if
+        None), draw, publish; return True if it changed."""
         before = (self.turtle.x, self.turtle.y, self.turtle.theta)
         for request in self.teleports:
             start = (self.turtle.x, self.turtle.y)
@@ -119,7 +120,9 @@ class TurtleInterfaces:
             canvas.lift(self.name)
         self.teleports.clear()
         self._rotate()
-        elapsed = (self.node.get_clock().now() - self.last_command).nanoseconds
+        if at is None:
+            at = self.node.get_clock().now().nanoseconds
+        elapsed = at - self.last_command.nanoseconds
         if elapsed > COMMAND_TIMEOUT * 1e9:
             self.turtle.stop()
         start = (self.turtle.x, self.turtle.y)
