@@ -17,8 +17,8 @@ __all__ = ["pytest_argv", "run_tests"]
 def pytest_argv(extra: list[str]) -> list[str]:
     """Return the pytest command line: tests/ and every notebook, one worker per core and two
     more: the tests wait on real processes much of the time (on 2 cores, 2 workers left them
-    65% idle and took 714-730 s; 3 took 586-603 s on fresh clones, 4 took 570 s with the
-    cores 85% busy; each load-only failure seen at 4 was a race of the code, since fixed)."""
+    65% idle and took 714-730 s; on fresh clones 3 took 586-603 s, 4 took 520-530 s with the
+    cores about 89% busy, 5 took 517 s; each failure seen only at 4 was a race, since fixed)."""
     cores = os.cpu_count() or 1
     workers = str(cores + 2) if cores >= 2 else "0"
     notebooks = ["notebooks"] if any(NOTEBOOKS_DIR.glob("*.ipynb")) else []

@@ -15,7 +15,7 @@ __all__ = ["SECONDS_FILE", "file_of", "longest_first", "read_seconds", "write_se
 
 SECONDS_FILE = Path(__file__).resolve().parents[1] / "file_seconds.txt"
 _HEADER = """\
-# Seconds each test file took in a whole run (`make test` on 2 cores, 3 workers): the suite
+# Seconds each test file took in a whole run (`make test` on 2 cores): the suite
 # deals the files longest first (tests/support/file_order.py). Files not listed count as 0.
 # Written by `COURSE_FILE_SECONDS=tests/file_seconds.txt make test`.
 """
