@@ -173,7 +173,7 @@ def stop_daemon(domain_id: int | str, *, timeout: float = STOP_TIMEOUT_S) -> boo
 def daemon_pids(domain_id: int | str) -> list[int]:
     """Return the pids of the daemon processes serving `domain_id` on this network (whoever
     owns them): a network namespace of its own has its own domains, so the same number there
-    is another domain (a hub's learner in the hub attack tests' own network)."""
+    is another domain (a walled class hub numbers its learners' domains from 1 too)."""
     network = procfs.network_namespace()
     return [
         pid
