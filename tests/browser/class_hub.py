@@ -19,6 +19,8 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+from unix_accounts import new_home
+
 from course_lib.core.paths import REPO_ROOT
 from course_lib.core.ports import free_port
 from course_lib.core.waiting import wait_until
@@ -63,18 +65,12 @@ def processes_of(name: str) -> list[str]:
     return found
 
 
-def _new_home(name: str) -> Path:
-    """Return the home folder useradd gives a new account `name`."""
-    told = subprocess.run(["useradd", "-D"], capture_output=True, text=True, check=True).stdout
-    return Path(dict(line.split("=", 1) for line in told.split())["HOME"]) / name
-
-
 def remove_account(name: str) -> None:
     """Remove a test account and its home (its processes first: it is the test's own); a home
     an interrupted run left without its account too (the hub refuses to create one over it)."""
     uid = uid_of(name)
     if uid is None:
-        shutil.rmtree(_new_home(name), ignore_errors=True)
+        shutil.rmtree(new_home(name), ignore_errors=True)
         return
     for line in processes_of(name):
         with contextlib.suppress(OSError):

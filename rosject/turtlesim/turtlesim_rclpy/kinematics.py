@@ -9,6 +9,23 @@ PIXELS_PER_METER = 45
 WORLD_SIZE = struct.unpack('f', struct.pack('f', 499 / PIXELS_PER_METER))[0]
 UPDATE_PERIOD = 0.016  # seconds: the real window's update timer, also each step's dt
 COMMAND_TIMEOUT = 1.0  # seconds: a turtle stops when commands stop coming
+STEP_NS = round(UPDATE_PERIOD * 1e9)
+MOST_STEPS_OWED = round(COMMAND_TIMEOUT / UPDATE_PERIOD)  # a command's whole second
+
+
+def steps_due(next_step, now):
+    """Return the times (ns) of the steps due by `now`, from `next_step` on, and the time of
+    the next one. A late timer (a busy machine) makes up what it owes, up to a command's
+    second; further behind (a suspended machine) or ahead (the clock went back), the steps
+    start again from `now`."""
+    behind = now - next_step
+    if behind >= MOST_STEPS_OWED * STEP_NS or behind < -STEP_NS:
+        next_step = now
+    due = []
+    while next_step <= now:
+        due.append(next_step)
+        next_step += STEP_NS
+    return due, next_step
 
 
 def normalize_angle(angle):

@@ -16,15 +16,13 @@ from std_srvs.srv import Empty
 from turtlesim.srv import Kill, Spawn
 
 from .canvas import Canvas
-from .kinematics import COMMAND_TIMEOUT, UPDATE_PERIOD, WORLD_SIZE
+from .kinematics import STEP_NS, steps_due, UPDATE_PERIOD, WORLD_SIZE
 from .rclcpp_like import declare_parameter_events_qos
 from .turtle import TurtleInterfaces
 from .window import open_window, window_scene
 
 DEFAULT_BACKGROUND = {'background_r': 0x45, 'background_g': 0x56, 'background_b': 0xFF}
 CHANNELS = {'background_r': 'Red', 'background_g': 'Green', 'background_b': 'Blue'}
-STEP_NS = round(UPDATE_PERIOD * 1e9)
-MAX_CATCH_UP_STEPS = round(COMMAND_TIMEOUT / UPDATE_PERIOD)  # a command's whole second
 PARAMETER_EVENTS_QOS = QoSProfile(depth=100, reliability=qos_profile_sensor_data.reliability)
 
 
@@ -115,22 +113,17 @@ class Turtlesim(Node):
         return response
 
     def on_update(self):
-        """Step the turtles once for each period since the last step, each at its own time.
+        """Step the turtles once for each step due, each at its own time (`steps_due`).
 
         The real window steps once per timer tick. In Python on a busy machine ticks come late
-        or not at all, and a command (followed for 1 s) moved a turtle 45 steps instead of 62:
-        the steps a late tick owes are made up, up to a second's worth.
+        or not at all, and a command (followed for 1 s) moved a turtle 45 steps instead of 62.
         """
         now = self.get_clock().now().nanoseconds
         with self.lock:
-            for _ in range(MAX_CATCH_UP_STEPS):
-                if self.next_step > now:
-                    break
+            due, self.next_step = steps_due(self.next_step, now)
+            for at in due:
                 for turtle in list(self.turtles.values()):
-                    turtle.update(UPDATE_PERIOD, self.canvas, at=self.next_step)
-                self.next_step += STEP_NS
-            if self.next_step <= now:  # further behind (a suspended machine): from now on
-                self.next_step = now + STEP_NS
+                    turtle.update(UPDATE_PERIOD, self.canvas, at=at)
 
     def scene(self):
         """Return what the window shows now (called by the window's server)."""

@@ -12,27 +12,15 @@ import shutil
 import subprocess
 import sys
 import tempfile
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
 from course_lib.core.waiting import wait_until
 from course_lib.hub.wall import enter_own_network, wall_problem
-from course_lib.processes.domain import lease_domain
 from course_lib.ros2.node import connect
-from course_lib.session.session import session_env
 
 pytestmark = [pytest.mark.ros]
-
-
-@pytest.fixture
-def leased_env() -> Iterator[dict[str, str]]:
-    lease = lease_domain({})
-    try:
-        yield session_env(lease.domain_id)
-    finally:
-        lease.release()
 
 
 def _start_daemon(env: dict[str, str], *, own_network: bool) -> subprocess.Popen[bytes]:

@@ -7,35 +7,18 @@ still starting when the winner was stopped, and one of them became a daemon nobo
 
 from __future__ import annotations
 
-import os
-import signal
 import threading
-from collections.abc import Iterator
 
 import pytest
 
 from course_lib.core.waiting import wait_until
-from course_lib.processes.domain import lease_domain
 from course_lib.ros2.node import connect
-from course_lib.session.session import session_env
 
 pytestmark = [
     pytest.mark.ros,
     # the daemon outlives its Popen on purpose (spawn_detached): Python warns at collection
     pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning"),
 ]
-
-
-@pytest.fixture
-def domain_env() -> Iterator[dict[str, str]]:
-    lease = lease_domain({})
-    try:
-        yield session_env(lease.domain_id)
-    finally:
-        connect.stop_daemon(lease.domain_id)
-        for pid in connect.daemon_pids(lease.domain_id):
-            os.kill(pid, signal.SIGKILL)
-        lease.release()
 
 
 def _terminal_first_call(env: dict[str, str]) -> bool:
@@ -49,7 +32,7 @@ def _terminal_first_call(env: dict[str, str]) -> bool:
     [connect.start_detached, _terminal_first_call],
     ids=["ros2-daemon-start", "any-command"],
 )
-def test_racing_starts_spawn_one_daemon(domain_env, monkeypatch, first_call) -> None:  # type: ignore[no-untyped-def]
+def test_racing_starts_spawn_one_daemon(leased_env, monkeypatch, first_call) -> None:  # type: ignore[no-untyped-def]
     spawned: list[int] = []
     real_spawn = connect.spawn_detached
 
@@ -63,7 +46,7 @@ def test_racing_starts_spawn_one_daemon(domain_env, monkeypatch, first_call) -> 
 
     def racer() -> None:
         gate.wait()
-        started.append(first_call(domain_env))
+        started.append(first_call(leased_env))
 
     threads = [threading.Thread(target=racer) for _ in range(4)]
     for thread in threads:
@@ -75,5 +58,5 @@ def test_racing_starts_spawn_one_daemon(domain_env, monkeypatch, first_call) -> 
         assert sorted(started) == [False, False, False, True]
     else:
         assert started == [True] * 4  # every command got its connection
-    domain = domain_env["ROS_DOMAIN_ID"]
+    domain = leased_env["ROS_DOMAIN_ID"]
     assert wait_until(lambda: len(connect.daemon_pids(domain)) == 1, 10)

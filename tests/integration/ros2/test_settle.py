@@ -5,8 +5,8 @@ The wait's rules are unit-tested on a fake clock (tests/unit/ros2/node/test_ros2
 
 from __future__ import annotations
 
+import signal
 import socket
-import subprocess
 import sys
 import time
 
@@ -14,6 +14,7 @@ import pytest
 
 from course_lib.core import procfs
 from course_lib.core.waiting import wait_until
+from course_lib.processes.children import spawn
 from course_lib.ros2.node.client import RosClient
 from course_lib.ros2.node.discovery import FASTDDS_DEFAULT_ANNOUNCEMENT_S, read_bound_participants
 from course_lib.session.session import Session
@@ -96,7 +97,6 @@ def test_a_fresh_client_finds_a_node_whose_process_is_slow_to_answer(session: Se
     running nodes: none" while the node ran). Here the process is stopped for 6 s: its sockets
     are bound, so the client knows a participant is unseen, and waits for it."""
     import os
-    import signal
     import threading
 
     child = session.run("parameter_tests", "param_vel")
@@ -148,16 +148,13 @@ def test_a_participant_that_has_left_does_not_stand_in_for_one_not_seen(reaped: 
     parent reaps it, the killed process is still listed, its ports free (run 23 of stop 46)."""
     own, client = _young_client()
     unseen = _hold_participant_port(own.domain_id)
-    # a plain Popen is reaped only when waited for; a course child, by its owner at once
-    leaving = subprocess.Popen(
-        [sys.executable, "-c", PLAIN_NODE], env=own.env, stdout=subprocess.PIPE, text=True
-    )
+    # without its output read, a child is reaped only when waited for (it dies with the test)
+    leaving = spawn([sys.executable, "-c", PLAIN_NODE], name="leaving", env=own.env, capture=False)
     try:
-        assert leaving.stdout is not None and leaving.stdout.readline() == "up\n"
-        assert wait_until(lambda: "/leaving_node" in _names(client), 15)
+        assert wait_until(lambda: "/leaving_node" in _names(client), 30)
         assert wait_until(lambda: client.graph_view().missing_participants == 1, 10)
         bound = read_bound_participants(own.domain_id)
-        leaving.kill()  # a participant that leaves without a word
+        leaving.send_signal(signal.SIGKILL, reason="a participant that leaves without a word")
         if reaped:
             leaving.wait()
         assert wait_until(lambda: read_bound_participants(own.domain_id) == bound - 1, 5)
@@ -166,7 +163,6 @@ def test_a_participant_that_has_left_does_not_stand_in_for_one_not_seen(reaped: 
         assert leaving.pid & 0xFFFF in view.participant_pids, "its lease ended already"
         assert view.missing_participants == 1, view
     finally:
-        leaving.kill()
-        leaving.communicate()
+        leaving.stop()
         unseen.close()
         own.close()

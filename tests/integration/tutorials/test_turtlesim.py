@@ -152,13 +152,13 @@ def test_turtlesim_interfaces_motion_services_and_window(terminals) -> None:
 
 
 def test_a_turtle_paused_by_a_busy_machine_still_follows_a_command_for_one_second(
-    session: Session,
+    ros_session: Session, daemon: None
 ) -> None:
     """Run 25 of stop 46 (four test workers on 2 cores): the window's update ticks came late,
     and the docs' one Twist turned the turtle 1.30 rad instead of 1.79 (45 steps of 62). Here
     the window is stopped outright for half of that second; it makes up the steps it owes."""
-    window = session.run("turtlesim", "turtlesim_node")
-    publisher = session.node.create_publisher(Twist, "/turtle1/cmd_vel", 10)
+    window = ros_session.run("turtlesim", "turtlesim_node")
+    publisher = ros_session.node.create_publisher(Twist, "/turtle1/cmd_vel", 10)
     try:
         assert wait_until(lambda: publisher.get_subscription_count() == 1, 20)
         publisher.publish(Twist(angular=Vector3(z=1.8)))
@@ -170,12 +170,12 @@ def test_a_turtle_paused_by_a_busy_machine_still_follows_a_command_for_one_secon
         echoed = subprocess.run(
             [sys.executable, "-m", "course_lib.ros2.command.cli", "topic", "echo", "--once",
              "/turtle1/pose"],
-            env=session.env, capture_output=True, text=True, timeout=60, check=True,
+            env=ros_session.env, capture_output=True, text=True, timeout=60, check=True,
         )  # fmt: skip
         pose = yaml.safe_load(echoed.stdout.split("---")[0])
         steps = round(1.0 / 0.016)  # the window's 16 ms steps in the command's second
         assert abs(pose["theta"] - 1.8 * 0.016 * steps) < 2 * 1.8 * 0.016, pose
         assert pose["angular_velocity"] == 0.0, pose
     finally:
-        session.node.destroy_publisher(publisher)
+        ros_session.node.destroy_publisher(publisher)
         window.stop()

@@ -10,6 +10,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from unix_accounts import new_home
 
 from course_lib.core.errors import CourseError
 from course_lib.hub.accounts import PASSWORDS_FILE, ensure_accounts
@@ -36,8 +37,7 @@ def test_a_home_folder_left_by_a_removed_account_is_refused_and_kept(tmp_path: P
     """useradd keeps a folder that is there and only warns; the learner could not enter it,
     and their server never started (the hub waited 120 s, then said it did not respond)."""
     name = f"crs{secrets.token_hex(4)}"
-    base = subprocess.run(["useradd", "-D"], capture_output=True, text=True, check=True).stdout
-    home = Path(dict(line.split("=", 1) for line in base.split())["HOME"]) / name
+    home = new_home(name)
     home.mkdir(mode=0o700)
     (home / "notes.txt").write_text("theirs\n")
     os.chown(home, 3_999_999, 3_999_999)  # no account has it: a removed account's uid
