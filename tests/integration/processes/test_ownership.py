@@ -7,7 +7,9 @@ so they are safe next to other sessions; tests/faults/test_make_stop.py stops fo
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -43,6 +45,9 @@ def started() -> Iterator[list[subprocess.Popen]]:
     yield procs
     for proc in procs:
         if proc.poll() is None:
+            with contextlib.suppress(ProcessLookupError):
+                if os.getpgid(proc.pid) == proc.pid:  # a group of its own: what it started too
+                    os.killpg(proc.pid, signal.SIGKILL)
             proc.kill()
         proc.communicate()
 
@@ -63,6 +68,7 @@ def test_an_inherited_owner_tag_is_not_the_courses(started) -> None:
     shell = subprocess.Popen(
         ["sh", "-c", f"{' '.join(SLEEP[:2])} 'import time; time.sleep(120)'; true"],
         env={**independent_env(), OWNER_ENV: owner_tag(), NAME_ENV: "jupyterlab"},
+        start_new_session=True,  # the editor goes with it at the end (it outlived the test)
     )
     started.append(shell)
     assert wait_until(lambda: any(read_process(p) for p in _children(shell.pid)), 10.0)
