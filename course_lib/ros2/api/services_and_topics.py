@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import time
 from typing import Any
 
 from .errors import TopicNotFoundError
@@ -90,6 +89,7 @@ def topic_publish(
     """Publish one message (after waiting up to `wait` s for a subscriber); return it."""
     from ...core.waiting import wait_until
     from ..msgfill import import_type, set_message_fields
+    from ..node.delivery import keep_until_acknowledged
     from .nodes_and_params import client
 
     msg_class = import_type(msg_type, "msg")
@@ -100,7 +100,7 @@ def topic_publish(
     try:
         wait_until(lambda: pub.get_subscription_count() > 0, wait)
         pub.publish(msg)
-        time.sleep(0.1)  # ros2topic's keep-alive: let the message reach the wire
+        keep_until_acknowledged(pub, keep_alive=0.1)  # ros2topic's keep-alive, and delivery
         return msg
     finally:
         node.destroy_publisher(pub)

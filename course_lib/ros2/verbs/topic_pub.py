@@ -12,6 +12,7 @@ from typing import Any
 import yaml
 
 from ..msgfill import import_type, set_message_fields
+from ..node.delivery import keep_until_acknowledged
 from . import options
 from .context import Context
 
@@ -185,5 +186,5 @@ def _publish_loop(
             break
         if ctx.console.cancelled.wait(max(0.0, start + count * period - time.monotonic())):
             return 2
-    time.sleep(args.keep_alive)
+    keep_until_acknowledged(pub, keep_alive=args.keep_alive)
     return 0
