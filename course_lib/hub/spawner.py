@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import os
 import pwd
 import signal
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any, ClassVar
@@ -57,6 +59,7 @@ class HubDomains:
 
 
 STOP_TIMEOUT_S = 60.0
+START_POLL_S = 0.25
 OUTPUT_LIMIT = 16384  # bytes of its output the hub keeps for its log
 
 
@@ -125,7 +128,9 @@ class CourseSpawner(LocalProcessSpawner):
     async def start(self) -> Any:
         self.domain_id = self.domains.take(self.user.name, walled=self.wall)
         if not self.wall:
-            return await super().start()
+            address = await super().start()
+            await self._wait_until_listening()
+            return address
         self._prepare_socket_folder()
         self.port = _SERVER_DEFAULT_PORT
         await super().start()
@@ -135,7 +140,38 @@ class CourseSpawner(LocalProcessSpawner):
         url = f"http+unix://{quote(str(self.socket_path()), safe='')}"
         # JupyterHub keeps only ip and port of a server; its address on a socket is this
         self.server.connect_url = url
+        await self._wait_until_listening()
         return url
+
+    async def _wait_until_listening(self) -> None:
+        """Return once the server accepts connections, or after `http_timeout` (the hub's own
+        wait then says so); raise at once if it ends first. JupyterHub itself only asks
+        whether the server answers, so a server that died as it started (a home the learner
+        cannot write, say) kept the learner on "starting" for the whole timeout."""
+        deadline = time.monotonic() + self.http_timeout
+        while time.monotonic() < deadline:
+            status = await self.poll()
+            if status is not None:
+                raise RuntimeError(
+                    f"{self.user.name}'s server stopped as it started (exit status {status}): "
+                    "its last lines are in the hub's log."
+                )
+            if await self._accepts_connections():
+                return
+            await asyncio.sleep(START_POLL_S)
+
+    async def _accepts_connections(self) -> bool:
+        try:
+            if self.wall:
+                _, writer = await asyncio.open_unix_connection(str(self.socket_path()))
+            else:
+                _, writer = await asyncio.open_connection(self.ip or "127.0.0.1", self.port)
+        except OSError:
+            return False
+        writer.close()
+        with contextlib.suppress(OSError):
+            await writer.wait_closed()
+        return True
 
     async def stop(self, now: bool = False) -> None:
         try:
