@@ -24,6 +24,7 @@ from course_lib.processes.children import (
     OWNER_ENV,
     OWNER_NS_ENV,
     SPAWNED_ENV,
+    ChildProcess,
     command_tag,
     owner_tag,
     reap_orphans,
@@ -32,11 +33,31 @@ from course_lib.processes.children import (
 from course_lib.processes.ownership import course_processes, protected_pids, read_process
 from course_lib.tools.testing import independent_env
 
-SLEEP = [sys.executable, "-c", "import time; time.sleep(120)"]
+SLEEP = [sys.executable, "-c", "import time; print('up', flush=True); time.sleep(120)"]
 
 
 def reasons() -> dict[int, str]:
     return {p.pid: p.reason for p in course_processes()}
+
+
+def start_sleeper(
+    started: list[subprocess.Popen], env: dict[str, str] | None = None
+) -> subprocess.Popen[str]:
+    """Start SLEEP; return it once it runs its code. Judged sooner, a process can be mid-exec
+    (the ROS wheels' bootstrapper re-executes Python at start), with no command line or
+    environment to read: a suite run found no "leftover" where one was, and a "not the
+    course's" judged then would pass without proving anything."""
+    proc = subprocess.Popen(SLEEP, env=env, stdout=subprocess.PIPE, text=True)
+    started.append(proc)
+    assert proc.stdout is not None and proc.stdout.readline() == "up\n"
+    return proc
+
+
+def spawn_sleeper(name: str) -> ChildProcess:
+    """Spawn SLEEP as the course does; return it once it runs its code (see start_sleeper)."""
+    child = spawn(SLEEP, name=name)
+    assert child.wait_for_line("^up$", 30) is not None, child.text()
+    return child
 
 
 @pytest.fixture
@@ -53,7 +74,7 @@ def started() -> Iterator[list[subprocess.Popen]]:
 
 
 def test_a_spawned_child_is_the_courses_and_named() -> None:
-    child = spawn(SLEEP, name="my-node")
+    child = spawn_sleeper("my-node")
     try:
         found = {p.pid: p for p in course_processes()}
         assert found[child.pid].reason == "child"
@@ -80,12 +101,8 @@ def test_an_inherited_owner_tag_is_not_the_courses(started) -> None:
 
 
 def test_a_copied_tag_of_a_live_process_is_not_the_courses(started) -> None:
-    live_owner = subprocess.Popen(SLEEP)
-    started.append(live_owner)
-    copied = subprocess.Popen(
-        SLEEP, env={**independent_env(), OWNER_ENV: owner_tag(live_owner.pid)}
-    )
-    started.append(copied)
+    live_owner = start_sleeper(started)
+    copied = start_sleeper(started, {**independent_env(), OWNER_ENV: owner_tag(live_owner.pid)})
     assert copied.pid not in reasons()
 
 
@@ -96,9 +113,8 @@ def test_a_dead_owners_process_is_a_leftover(started) -> None:
     # as the course's spawn starts it: its command recorded (a program that only inherited the
     # owner tag, one the learner started from a lab terminal, is never a leftover)
     env = {**independent_env(), OWNER_ENV: tag}
-    leftover = subprocess.Popen(SLEEP, env={**env, SPAWNED_ENV: command_tag(SLEEP)})
-    learners = subprocess.Popen(SLEEP, env=env)
-    started += [leftover, learners]
+    leftover = start_sleeper(started, {**env, SPAWNED_ENV: command_tag(SLEEP)})
+    learners = start_sleeper(started, env)
     found = reasons()
     assert found.get(leftover.pid) == "leftover" and learners.pid not in found
 
@@ -142,8 +158,8 @@ def test_a_lab_marker_names_a_lab_only_if_it_is_one(started) -> None:
 
 def test_inside_a_lab_its_jupyterlab_is_kept(monkeypatch: pytest.MonkeyPatch) -> None:
     # This process plays the lab; its children: JupyterLab (kept) and a simulation (not kept).
-    jupyterlab = spawn(SLEEP, name="jupyterlab")
-    simulation = spawn(SLEEP, name="simulation")
+    jupyterlab = spawn_sleeper("jupyterlab")
+    simulation = spawn_sleeper("simulation")
     try:
         table = {p: read_process(p) for p in (os.getpid(), jupyterlab.pid, simulation.pid)}
         monkeypatch.setenv("COURSE_LAB", "1")
@@ -174,11 +190,8 @@ def process_env(pid: int) -> dict[str, str]:
 
 
 def test_reaping_spares_a_copied_tag_of_a_live_process(started) -> None:
-    live_owner = subprocess.Popen(SLEEP)
-    copied = subprocess.Popen(
-        SLEEP, env={**independent_env(), OWNER_ENV: owner_tag(live_owner.pid)}
-    )
-    started += [live_owner, copied]
+    live_owner = start_sleeper(started)
+    copied = start_sleeper(started, {**independent_env(), OWNER_ENV: owner_tag(live_owner.pid)})
     assert copied.pid not in reap_orphans()
     assert copied.poll() is None
 
@@ -189,9 +202,8 @@ def test_a_tag_from_another_pid_namespace_is_never_judged_here(started) -> None:
     tag = owner_tag(owner.pid)
     owner.wait()
     env = {**independent_env(), OWNER_ENV: tag, SPAWNED_ENV: command_tag(SLEEP)}
-    elsewhere = subprocess.Popen(SLEEP, env={**env, OWNER_NS_ENV: "1"})
-    here = subprocess.Popen(SLEEP, env={**env, OWNER_NS_ENV: pid_namespace()})
-    started += [elsewhere, here]
+    elsewhere = start_sleeper(started, {**env, OWNER_NS_ENV: "1"})
+    here = start_sleeper(started, {**env, OWNER_NS_ENV: pid_namespace()})
     found = reasons()
     assert elsewhere.pid not in found and found.get(here.pid) == "leftover"
     assert elsewhere.pid not in reap_orphans()
