@@ -186,18 +186,23 @@ def test_leftovers_of_a_dead_owner_are_reaped() -> None:
         check=True,
     )
     tag = f"{dead_owner.stdout.strip()}:1"
-    argv = [sys.executable, "-c", "import time; time.sleep(600)"]
+    argv = [sys.executable, "-c", "import time; print('up', flush=True); time.sleep(600)"]
     leftover = subprocess.Popen(
         argv,
         env={**os.environ, OWNER_ENV: tag, SPAWNED_ENV: command_tag(argv)},  # as spawn does
         start_new_session=True,
+        stdout=subprocess.PIPE,
+        text=True,
     )
     try:
+        # once it runs its code: inside the ROS wheels' re-exec its environment reads empty
+        assert leftover.stdout is not None and leftover.stdout.readline() == "up\n"
         assert leftover.pid in reap_orphans()
         assert leftover.wait(timeout=2) == -signal.SIGKILL
     finally:
         if leftover.poll() is None:
             leftover.kill()
+        leftover.communicate()
 
 
 def test_close_stops_children_and_is_idempotent() -> None:
