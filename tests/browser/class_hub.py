@@ -121,7 +121,13 @@ def start_prebuild() -> ChildProcess:
 class ClassHub:
     """The course's hub on a free port, for `learners` and `admins` (test accounts)."""
 
-    def __init__(self, learners: tuple[str, ...], admins: tuple[str, ...], folder: Path) -> None:
+    def __init__(
+        self,
+        learners: tuple[str, ...],
+        admins: tuple[str, ...],
+        folder: Path,
+        env_extra: dict[str, str] | None = None,
+    ) -> None:
         self.learners, self.admins = learners, admins
         for name in (*learners, *admins):
             remove_account(name)  # a leftover of an interrupted run: start from nothing
@@ -143,7 +149,8 @@ class ClassHub:
         )
         argv = [str(REPO_ROOT / ".venv/bin/python"), "-m", "course_lib", "hub"]
         self.process: ChildProcess = spawn(
-            [*argv, "--config", str(self.config)], name="class-hub", env=independent_env(),
+            [*argv, "--config", str(self.config)], name="class-hub",
+            env={**independent_env(), **(env_extra or {})},
             cwd=REPO_ROOT, merge_stderr=True,
         )  # fmt: skip
         self.url = f"http://127.0.0.1:{self.port}"

@@ -12,7 +12,6 @@ from __future__ import annotations
 import contextlib
 import json
 import os
-import re
 import secrets
 import signal
 import subprocess
@@ -22,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 import requests
+from hub_sign_in import sign_in
 
 from course_lib.core.ports import free_port
 from course_lib.hub.progress import (
@@ -209,14 +209,6 @@ class ClassHub:
 
     def login(self, user: str, password: str) -> requests.Session:
         """Return a browser-like session logged in to the hub as `user` (the login form)."""
-        session = requests.Session()
-        form = session.get(f"{self.url}/hub/login", timeout=30)
-        xsrf = re.search(r'name="_xsrf" value="([^"]+)"', form.text)
-        assert xsrf, form.text[:500]
-        done = session.post(
-            f"{self.url}/hub/login",
-            data={"username": user, "password": password, "_xsrf": xsrf.group(1)},
-            timeout=30,
-        )
+        session, done = sign_in(self.url, user, password)
         assert done.ok and "/hub/login" not in done.url, f"{user} could not log in: {done.url}"
         return session

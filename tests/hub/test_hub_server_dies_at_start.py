@@ -10,32 +10,21 @@ from __future__ import annotations
 import json
 import os
 import pwd
-import re
 import time
 from pathlib import Path
 
 import pytest
 import requests
 from class_hub import ClassHub
+from hub_sign_in import sign_in
+
+from course_lib.hub.launcher import NO_WALL_ENV
+from course_lib.hub.wall import wall_problem
 
 pytestmark = [pytest.mark.slow]
 
 LEARNER, ADMIN = "r2pw-dee", "r2pw-dad"
 REPORTED_WITHIN_S = 30.0  # the server's own start and death take a few seconds
-
-
-def _log_in(hub: ClassHub, name: str) -> requests.Session:
-    """Sign in through the login form, as a browser does (the hub then starts the server)."""
-    session = requests.Session()
-    form = session.get(f"{hub.url}/hub/login", timeout=30)
-    xsrf = re.search(r'name="_xsrf" value="([^"]+)"', form.text)
-    assert xsrf, form.text[:500]
-    session.post(
-        f"{hub.url}/hub/login",
-        data={"username": name, "password": hub.passwords[name], "_xsrf": xsrf.group(1)},
-        timeout=180,
-    )
-    return session
 
 
 def _last_progress_event(session: requests.Session, hub: ClassHub, name: str) -> dict:
@@ -52,18 +41,26 @@ def _last_progress_event(session: requests.Session, hub: ClassHub, name: str) ->
     return event
 
 
+@pytest.mark.parametrize("wall", [True, False], ids=["own-network", "host-network"])
 def test_a_server_that_dies_as_it_starts_fails_the_spawn_at_once(
-    tmp_path_factory: pytest.TempPathFactory,
+    tmp_path_factory: pytest.TempPathFactory, wall: bool
 ) -> None:
     if os.geteuid() != 0:
         pytest.skip("a class hub creates Unix accounts: run as root (CI does)")
-    hub = ClassHub((LEARNER,), (ADMIN,), tmp_path_factory.mktemp("dying-server-hub"))
+    if wall and wall_problem():
+        pytest.skip(f"no network namespace here: {wall_problem()}")
+    # behind the wall the server listens on a Unix socket; without it, on a port
+    hub = ClassHub(
+        (LEARNER,), (ADMIN,), tmp_path_factory.mktemp("dying-server-hub"),
+        env_extra={} if wall else {NO_WALL_ENV: "1"},
+    )  # fmt: skip
     account = pwd.getpwnam(LEARNER)
     home = Path(account.pw_dir)
     try:
+        assert ("The domain wall is on" in hub.log()) == wall, hub.log()[-2000:]
         os.chown(home, 0, 0)  # a home the learner can enter but not write: the server dies
         began = time.monotonic()
-        session = _log_in(hub, LEARNER)
+        session, _page = sign_in(hub.url, LEARNER, hub.passwords[LEARNER], timeout=180)
         event = _last_progress_event(session, hub, LEARNER)
         reported = time.monotonic() - began
         assert event.get("failed"), event

@@ -9,11 +9,11 @@ Here the subscriber is stopped outright for a second while the command publishes
 from __future__ import annotations
 
 import signal
-import subprocess
 import sys
 import threading
 
 import pytest
+from ros2_golden import run_console
 
 from course_lib.core.waiting import wait_until
 from course_lib.session.session import Session
@@ -33,17 +33,6 @@ LAG_S = 1.0
 ROUNDS = 3  # before the change, 1 message in 5 came through a stop of 1 s
 
 
-def _ros2(session: Session, *argv: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "course_lib.ros2.command.cli", *argv],
-        env=session.env,
-        capture_output=True,
-        text=True,
-        timeout=60,
-        check=False,
-    )
-
-
 def test_one_message_reaches_a_subscriber_that_lags_while_it_is_published(
     ros_session: Session, daemon: None
 ) -> None:
@@ -51,7 +40,9 @@ def test_one_message_reaches_a_subscriber_that_lags_while_it_is_published(
     assert listener.wait_for_line("listening", 30), listener.text()
     # the daemon's node knows the subscription: its publisher will match it at once
     assert wait_until(
-        lambda: "Subscription count: 1" in _ros2(ros_session, "topic", "info", "/chatter").stdout,
+        lambda: (
+            "Subscription count: 1" in run_console(ros_session.env, "ros2 topic info /chatter")[0]
+        ),
         20,
     )
     for number in range(ROUNDS):
@@ -61,13 +52,13 @@ def test_one_message_reaches_a_subscriber_that_lags_while_it_is_published(
         )
         resume.start()
         try:
-            published = _ros2(
-                ros_session, "topic", "pub", "--once", "/chatter", "std_msgs/msg/String",
-                f"{{data: round-{number}}}",
-            )  # fmt: skip
+            _out, err, code = run_console(
+                ros_session.env,
+                f"ros2 topic pub --once /chatter std_msgs/msg/String '{{data: round-{number}}}'",
+            )
         finally:
             resume.join()
-        assert published.returncode == 0, published.stderr
+        assert code == 0, err
         heard = listener.wait_for_line(f"heard round-{number}$", 10)
         assert heard is not None, f"round {number} never arrived:\n{listener.text()}"
     listener.stop()
