@@ -14,7 +14,8 @@ equal slot of the window at a random moment of it (--in-step: at the slot's star
 learner's at the same instant; learners do not type in step, and N gets at once measure a
 burst: N x 2 ms of CPU on 2 cores).
 Each round prints every learner's figures and one learner's processes (CPU cores, PSS MiB);
-the end says which goal fails first (memory per learner included).
+the end says which goal fails first as learners are added, and from which N on memory per
+learner is within its goal (it falls as learners share the libraries).
 The bench adds learners until a goal fails (--keep-going: until the real-time factor fails;
 at most --max), then stops everything it started, also on Ctrl-C or SIGTERM. A failed round
 is measured again (up to three times) when processes outside the bench used the CPU.

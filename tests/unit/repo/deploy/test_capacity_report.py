@@ -5,7 +5,15 @@ from __future__ import annotations
 import math
 
 from bench._capacity_kernel import get_moments, real_time_factor
-from bench._capacity_report import Figures, held_cores, judge, percentile, requests
+from bench._capacity_report import (
+    Figures,
+    first_failing,
+    held_cores,
+    judge,
+    memory_summary,
+    percentile,
+    requests,
+)
 from bench.class_capacity import sizes
 
 
@@ -71,3 +79,26 @@ def test_a_learner_of_its_own_asks_once_in_each_slot_at_its_own_moments() -> Non
     for moments in (first, other):
         assert [int((m - 10.0) // 0.25) for m in moments] == [0, 1, 2, 3]
         assert moments != get_moments(10.0, 11.0, 4, None)
+
+
+def _rounds(*mib: int) -> list[dict[str, object]]:
+    return [{"n": 2**i, "mib_per_learner": m} for i, m in enumerate(mib)]
+
+
+def test_memory_is_judged_from_the_n_on_which_it_stays_within_its_goal() -> None:
+    # 2026-11-28: one learner alone carries every library it maps; at 8 they are shared
+    assert memory_summary(_rounds(296, 267, 252, 245)).startswith(
+        "within 250 MiB from N = 8 on (296 MiB at N = 1, 267 MiB at N = 2, 252 MiB at N = 4, "
+        "245 MiB at N = 8;"
+    )
+    assert memory_summary(_rounds(240, 230)).startswith("within 250 MiB at every N")
+    assert memory_summary(_rounds(240, 260)).startswith("above 250 MiB at the largest N")
+    assert memory_summary(_rounds(300, 240, 260)).startswith("above 250 MiB at the largest N")
+
+
+def test_the_first_goal_to_fail_is_one_that_fails_as_learners_are_added() -> None:
+    rounds = _rounds(296, 267, 252, 245)  # memory above its goal at N = 1 says nothing of N
+    none = {"real-time factor": None, "param get median": None, "param get p99": None}
+    assert first_failing({"first_failing": none, "rounds": rounds}) == "none up to N = 8"
+    p99 = {**none, "param get p99": 8}
+    assert first_failing({"first_failing": p99, "rounds": rounds}) == "param get p99 at N = 8"
