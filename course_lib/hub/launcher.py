@@ -20,8 +20,9 @@ import yaml
 
 from ..core.errors import ConfigError, CourseError
 from ..core.ports import free_port
-from ..core.procfs import start_time
+from ..core.procfs import pid_namespace, start_time
 from ..core.signalling import send
+from ..processes.children import owner_alive, owner_tag
 from .accounts import ensure_accounts, ensure_system_account, refuse_system_accounts
 from .environment import build_environment, check_world_executable
 from .plan import PLAN_ENV, HubPlan, write_plan
@@ -38,12 +39,16 @@ from .settings import HUB_YAML, HubSettings, load_hub_settings
 from .tied import tied_preexec
 from .wall import wall_problem
 
-__all__ = ["forget_stale_proxy_pid", "run_hub"]
+__all__ = ["forget_stale_proxy_pid", "forget_stale_wall_folders", "run_hub"]
 
 CONFIG_FILE = Path(__file__).resolve().parent / "jupyterhub_config.py"
 READY_TIMEOUT_S = 60.0
 STOP_TIMEOUT_S = 90.0  # the hub stops every learner's server first
 NO_WALL_ENV = "COURSE_HUB_NO_WALL"  # set: no network of their own for learners (bench, tests)
+WALL_PREFIX = "ros2-params-course-hub-"  # + the hub's port: its learners' socket folders
+# In that folder (no account's name starts with a dot): the owner tag of the hub that made
+# it, and its PID namespace.
+WALL_OWNER = ".hub-owner"
 
 
 def _key_line(path: Path, key: str) -> int | None:
@@ -100,12 +105,34 @@ def _wall_sockets(port: int) -> tuple[bool, str]:
         )
         return False, ""
     run = Path("/run") if Path("/run").is_dir() else Path(tempfile.gettempdir())
-    folder = run / f"ros2-params-course-hub-{port}"  # one hub on a port at a time
+    folder = run / f"{WALL_PREFIX}{port}"  # one hub on a port at a time
     shutil.rmtree(folder, ignore_errors=True)  # the last start's, with its learners' folders
-    folder.mkdir(mode=0o711)
-    folder.chmod(0o711)
+    forget_stale_wall_folders(run)
+    # made whole under another name, then renamed: a folder of that name always has its owner
+    making = Path(tempfile.mkdtemp(prefix=f".{WALL_PREFIX}{port}-", dir=run))
+    (making / WALL_OWNER).write_text(f"{owner_tag()} {pid_namespace()}\n", encoding="utf-8")
+    making.chmod(0o711)
+    making.rename(folder)
     print("The domain wall is on: each learner's lab runs in a network of its own.")
     return True, str(folder)
+
+
+def forget_stale_wall_folders(run: Path) -> list[Path]:
+    """Remove the learners' socket folders of hubs that are gone (killed: none stopped them);
+    return them. A folder whose hub still runs, or ran in another PID namespace, is kept."""
+    removed = []
+    for folder in run.glob(f"{WALL_PREFIX}*"):
+        if not folder.name.removeprefix(WALL_PREFIX).isdigit() or folder.is_symlink():
+            continue
+        try:
+            tag, _, namespace = (folder / WALL_OWNER).read_text(encoding="utf-8").partition(" ")
+        except OSError:
+            tag, namespace = "", ""  # made before hubs wrote their owner: that hub is long gone
+        if tag and owner_alive(tag, namespace.strip()):
+            continue
+        shutil.rmtree(folder, ignore_errors=True)
+        removed.append(folder)
+    return removed
 
 
 def _plan(
