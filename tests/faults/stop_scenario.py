@@ -25,6 +25,7 @@ from lab_server import LabServer  # noqa: E402
 from lab_terminal import RestTerminal  # noqa: E402
 
 from course_lib.core.paths import REPO_ROOT  # noqa: E402
+from course_lib.core.signalling import LOG_ENV  # noqa: E402
 from course_lib.core.waiting import wait_until  # noqa: E402
 from course_lib.processes.ownership import read_process  # noqa: E402
 from course_lib.tools.testing import independent_env  # noqa: E402
@@ -44,9 +45,19 @@ stubborn = session.spawn(
     name="stubborn",
 )
 stubborn.wait_for_line("up", 10)
+node.wait_for_line("Velocity parameter is", 60)  # running, as when a learner types `make stop`
 print(f"node-pid={node.pid} stubborn-pid={stubborn.pid}", flush=True)
 time.sleep(600)
 """
+
+
+def signals_to(log: Path, pid: int) -> list[str]:
+    """Return the signals the COURSE_SIGNAL_LOG file `log` says were sent to `pid` (or its
+    group), in order."""
+    lines = log.read_text().splitlines() if log.exists() else []
+    targets = (f" to pid {pid} (", f" to group {pid} (")
+    sent = [line for line in lines if any(target in line for target in targets)]
+    return [line.split(" sends ", 1)[1].split()[0] for line in sent]
 
 
 def children(pid: int) -> list[int]:
@@ -101,11 +112,16 @@ def main() -> None:
     pids["script"] = read_process(pids["node"]).ppid  # type: ignore[union-attr]
 
     began, before = time.monotonic(), len(terminal.output)
-    inside = terminal.run(f"{PY} -m course_lib stop; echo stop-exit=$?", r"stop-exit=(\d+)")
+    signals = folder / "stop-signals.log"  # what `make stop` sent, kept with the artifacts
+    signals.unlink(missing_ok=True)
+    inside = terminal.run(
+        f"{LOG_ENV}={signals} {PY} -m course_lib stop; echo stop-exit=$?", r"stop-exit=(\d+)"
+    )
     facts["inside_seconds"] = round(time.monotonic() - began, 2)
     facts["inside_exit"] = int(inside[1])
     facts["inside_output"] = printed_by_stop(terminal.output[before:])
     facts["alive_after_inside"] = {name: pid_alive(pid) for name, pid in pids.items()}
+    facts["signals_to_node"] = signals_to(signals, pids["node"])
     facts["shell_answers"] = bool(terminal.run("echo still-$((2+3))", r"still-5"))
     terminal.close()
 

@@ -67,7 +67,11 @@ def test_in_a_lab_terminal_stop_keeps_the_lab_and_the_learners_programs(facts: d
 
 def test_stop_says_what_it_stopped_and_that_the_lab_stays(facts: dict) -> None:
     said, pids = facts["inside_output"], facts["pids"]
-    assert f"  param_vel (pid {pids['node']})\n" in said
+    # Ctrl-C first, as a learner would stop it. Its end is said as it came: after SIGTERM only
+    # if its rclpy teardown outlasted the grace time (once in a suite run on 2 busy cores)
+    assert facts["signals_to_node"][:1] == ["SIGINT"], facts["signals_to_node"]
+    node = f"  param_vel (pid {pids['node']})"
+    assert f"{node}\n" in said or f"{node} after SIGTERM\n" in said
     assert f"  stubborn (pid {pids['stubborn']}) after SIGKILL\n" in said  # SIGINT, SIGTERM
     assert "  ros2-daemon-" in said and f"(pid {pids['daemon']})" in said
     assert f"This terminal belongs to the lab (pid {pids['lab']})" in said
