@@ -37,7 +37,6 @@ def judge_leftover(
     A leftover reaped by another session before `judge` has a say (killed before `up`, or
     judged False and found killed) is started again, up to `attempts` times in all.
     """
-    verdict = False
     for _ in range(attempts):
         proc = start()
         assert proc.stdout is not None
@@ -48,4 +47,4 @@ def judge_leftover(
         verdict = judge(proc)
         if verdict or not _reaped(proc, 0.5):
             return verdict
-    return verdict
+    raise AssertionError(f"other sessions reaped each of {attempts} leftovers before judging")

@@ -54,13 +54,13 @@ def _lessons_api(_session: Session, text: str) -> None:
     topic_publish("/chatter", "std_msgs/msg/String", {"data": text})
 
 
-def _subscriptions_seen(session: Session, door: str) -> int:
-    """Return how many subscriptions of /chatter the door's long-lived node knows."""
+def _knows_the_listener(session: Session, door: str) -> bool:
+    """Return True once the door's long-lived node knows the one subscription of /chatter."""
     if door == "terminal":
         text = run_console(session.env, "ros2 topic info /chatter")[0]
     else:
         text = run_line("topic info /chatter").output.stdout
-    return 1 if "Subscription count: 1" in text else 0
+    return "Subscription count: 1" in text
 
 
 DOORS: dict[str, Callable[[Session, str], None]] = {
@@ -77,7 +77,7 @@ def test_one_message_reaches_a_subscriber_that_lags_while_it_is_published(
     listener = ros_session.spawn([sys.executable, "-c", LISTENER], name="lagging-listener")
     assert listener.wait_for_line("listening", 30), listener.text()
     # the door's long-lived node knows the subscription: its publisher will match it at once
-    assert wait_until(lambda: _subscriptions_seen(ros_session, door) == 1, 20)
+    assert wait_until(lambda: _knows_the_listener(ros_session, door), 20)
     for number in range(ROUNDS):
         listener.send_signal(signal.SIGSTOP, reason="a machine too busy to run it for a while")
         resume = threading.Timer(
