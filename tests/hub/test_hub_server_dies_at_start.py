@@ -25,20 +25,33 @@ pytestmark = [pytest.mark.slow]
 
 LEARNER, ADMIN = "r2pw-dee", "r2pw-dad"
 REPORTED_WITHIN_S = 30.0  # the server's own start and death take a few seconds
+ASK_AGAIN_FOR_S = 60.0  # how long a "not starting" answer is asked again (a clean-up's time)
 
 
 def _last_progress_event(session: requests.Session, hub: ClassHub, name: str) -> dict:
-    """Follow the spawn's progress as the "starting" page does; return its last event."""
+    """Follow the spawn's progress as the "starting" page does; return its last event.
+
+    A server that died is first stopped and cleaned up (the post-stop hook stops what it
+    left); only then is the spawn marked failed. In between, the hub answers the progress
+    stream with 400 "not starting" and sends a browser its "stopping" page, which reloads
+    until the failure shows: ask again, as that reload does (seen on a slow host, and made
+    certain by a post-stop hook that sleeps)."""
     url = f"{hub.url}/hub/api/users/{name}/server/progress"
-    event: dict = {}
-    with session.get(url, stream=True, timeout=180) as events:
-        assert events.status_code == 200, events.text
-        for line in events.iter_lines():
-            if line.startswith(b"data:"):
-                event = json.loads(line[len(b"data:") :])
-                if event.get("failed") or event.get("ready"):
-                    break
-    return event
+    deadline = time.monotonic() + ASK_AGAIN_FOR_S
+    while True:
+        with session.get(url, stream=True, timeout=180) as events:
+            stopping = events.status_code == 400 and "is not starting" in events.text
+            if stopping and time.monotonic() < deadline:
+                time.sleep(0.5)
+                continue
+            assert events.status_code == 200, events.text
+            event: dict = {}
+            for line in events.iter_lines():
+                if line.startswith(b"data:"):
+                    event = json.loads(line[len(b"data:") :])
+                    if event.get("failed") or event.get("ready"):
+                        break
+            return event
 
 
 @pytest.mark.parametrize("wall", [True, False], ids=["own-network", "host-network"])
