@@ -20,9 +20,8 @@ import pytest
 from class_hub import ClassHub, processes_of, server_token, stop_own_server, uid_of
 from lab_server import ARTIFACTS
 from notebook_ui import add_cell, run_all_cells, run_cell, show_tab, wait_all_ran
-from pixels import is_blank
 from terminal import Terminal
-from view import MOVED, VIEW, change_within, shot
+from view import MOVED, VIEW, drive_and_watch
 
 from course_lib.core.waiting import wait_until
 
@@ -85,11 +84,8 @@ def _view_moves(page: Any, artifacts: Path) -> float:
     """Put the robot back at its start (the world's cell does), drive it forward for a few
     seconds and return how much the 3D view changed meanwhile."""
     run_cell(page, "world = lesson.world()")
-    add_cell(page, "%ros2 param set /param_vel_node velocity 0.2")
-    page.locator(VIEW).first.scroll_into_view_if_needed()
-    first, path = shot(page, artifacts, "view_moving_0")
-    assert not is_blank(first), f"the 3D view is blank: {path}"
-    change, _ = change_within(page, artifacts, first, seconds=3)
+    drive = lambda: add_cell(page, "%ros2 param set /param_vel_node velocity 0.2")  # noqa: E731
+    change = drive_and_watch(page, artifacts, drive)
     add_cell(page, "%ros2 param set /param_vel_node velocity 0.0")
     return change
 

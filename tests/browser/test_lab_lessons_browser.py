@@ -14,9 +14,8 @@ from notebook_ui import (
     shut_down_kernel_of,
     wait_all_ran,
 )
-from pixels import is_blank
 from terminal import Terminal
-from view import MOVED, VIEW, change_within, shot
+from view import MOVED, VIEW, drive_and_watch
 
 from course_lib.core.paths import REPO_ROOT
 
@@ -36,11 +35,9 @@ def page(browser, lab):  # type: ignore[no-untyped-def]
 
 
 def _view_moves(page, artifacts: Path) -> float:  # type: ignore[no-untyped-def]
-    page.locator(LIVE_VIEW).first.scroll_into_view_if_needed()
-    first, path = shot(page, artifacts, "view_moving_0", LIVE_VIEW)
-    assert not is_blank(first), f"the 3D view is blank: {path}"
-    change, _ = change_within(page, artifacts, first, seconds=3, view=LIVE_VIEW)
-    return change
+    """Drive the still robot at 0.2 m/s; return how much the visible 3D view changed."""
+    drive = lambda: run_cell(page, "param set /param_vel_node velocity 0.2")  # noqa: E731
+    return drive_and_watch(page, artifacts, drive, view=LIVE_VIEW)
 
 
 def test_lesson7_opened_beside_lesson3_shares_its_robot(page, lab, artifacts: Path) -> None:
@@ -63,14 +60,12 @@ def test_lesson7_opened_beside_lesson3_shares_its_robot(page, lab, artifacts: Pa
         assert nodes.count("/param_vel_node\r\n") == 1, nodes
 
         assert shut_down_kernel_of(page, lab.base_url, lab.token, LESSONS[0]) == 1
-        run_cell(page, "param set /param_vel_node velocity 0.2")
         assert _view_moves(page, artifacts) > MOVED, f"robot did not move: {artifacts}"
         run_cell(page, "param set /param_vel_node velocity 0.0")
 
         # From the top again: the lesson's node stops, the 3D view keeps working.
         run_cell(page, "lesson = start(7)")
         run_cell(page, "%ros2 run parameter_tests param_vel")
-        run_cell(page, "param set /param_vel_node velocity 0.2")
         assert _view_moves(page, artifacts) > MOVED, f"view broken after re-run: {artifacts}"
         run_cell(page, "param set /param_vel_node velocity 0.0")
     finally:
