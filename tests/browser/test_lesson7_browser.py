@@ -6,10 +6,9 @@ from pathlib import Path
 
 import pytest
 from notebook_ui import run_all_cells, run_cell, wait_all_ran
-from pixels import changed_fraction, is_blank
+from pixels import changed_fraction
 from terminal import Terminal
-from view import MOVED, VIEW
-from view import change_within as _change_within
+from view import MOVED, VIEW, drive_and_watch
 from view import shot as _shot
 from view import wait_still as _wait_still
 
@@ -25,12 +24,9 @@ def test_lesson7_drives_the_robot_in_the_3d_view(page, artifacts: Path) -> None:
         assert page.get_by_text("Set parameter successful").count() >= 2  # 0.2, then 0.0
         # The lesson drives for 3 simulated seconds only; like a learner, set 0.2 again in
         # its cell so that the robot drives for as long as the screenshots take.
-        run_cell(page, "param set /param_vel_node velocity 0.2")
-        page.locator(VIEW).first.scroll_into_view_if_needed()  # an off-screen view may idle
-        moving_0, path_0 = _shot(page, artifacts, "view_moving_0")
-        assert not is_blank(moving_0), f"the 3D view is blank: {path_0}"
-        change, path_1 = _change_within(page, artifacts, moving_0, seconds=3)
-        assert change > MOVED, f"robot did not move in the view ({change:.4f}): {path_0} {path_1}"
+        drive = lambda: run_cell(page, "param set /param_vel_node velocity 0.2")  # noqa: E731
+        change = drive_and_watch(page, artifacts, drive)
+        assert change > MOVED, f"robot did not move in the view ({change:.4f}): {artifacts}"
         run_cell(page, "param set /param_vel_node velocity 0.0")
     finally:
         page.screenshot(path=str(artifacts / "page_last.png"))
