@@ -27,11 +27,21 @@ _SECONDS_OUT = os.environ.get("COURSE_FILE_SECONDS", "")
 _file_seconds: dict[str, float] = {}
 RERUNS_FILE = REPO_ROOT / "test-artifacts" / "reruns.txt"
 _RERUN_TAIL = 40  # lines of each rerun's failure shown at the end of the run
+# Set by the run that keeps RERUNS_FILE, for its workers and for the pytest runs its tests
+# start (test_hub_attacks_own_network runs one, without PYTEST_* variables): each of those
+# unlinked the file as it started, and the reason for ci54's one rerun was lost.
+_RERUNS_KEPT_ENV = "COURSE_RERUNS_KEPT"
+_keeps_reruns = False
 
 
+@pytest.hookimpl(tryfirst=True)  # before xdist starts its workers, which inherit the variable
 def pytest_sessionstart(session: pytest.Session) -> None:
-    if "PYTEST_XDIST_WORKER" not in os.environ:
-        RERUNS_FILE.unlink(missing_ok=True)
+    global _keeps_reruns
+    if "PYTEST_XDIST_WORKER" in os.environ or os.environ.get(_RERUNS_KEPT_ENV):
+        return
+    os.environ[_RERUNS_KEPT_ENV] = "1"
+    _keeps_reruns = True
+    RERUNS_FILE.unlink(missing_ok=True)
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
@@ -55,7 +65,7 @@ def pytest_runtest_logreport(report: pytest.TestReport) -> None:
     if _SECONDS_OUT:
         name = file_of(report.nodeid)
         _file_seconds[name] = _file_seconds.get(name, 0.0) + report.duration
-    if report.outcome != "rerun":
+    if report.outcome != "rerun" or not _keeps_reruns:
         return
     RERUNS_FILE.parent.mkdir(parents=True, exist_ok=True)
     with RERUNS_FILE.open("a", encoding="utf-8") as out:
@@ -71,7 +81,7 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
     if "PYTEST_XDIST_WORKER" in os.environ:
         return
     _report_teardowns_cut_short(terminalreporter)
-    if not RERUNS_FILE.exists():
+    if not _keeps_reruns or not RERUNS_FILE.exists():
         return
     terminalreporter.section("why tests were rerun (the end of each failure)")
     for block in RERUNS_FILE.read_text(encoding="utf-8").split("===== ")[1:]:
