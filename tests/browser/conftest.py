@@ -83,11 +83,16 @@ def lab(request: pytest.FixtureRequest) -> Iterator[LabServer]:
 def _learners_lab(root: Path, lessons: list[str], extra: Sequence[str] = ()) -> LabServer:
     """Start a lab on copies of `lessons` laid out as a learner's copy on a hub is:
     `notebooks/` with its own `my_files/` (what the lessons write, and what a relative path in
-    a command finds), `rosject` beside it. Never the repository's own `notebooks/my_files/`."""
+    a command finds), `rosject` beside it. Never the repository's own `notebooks/my_files/`.
+    The last lab in `root` (a rerun's failed attempt, with its lab.log) is kept beside it as
+    `<root>.previous` (ci55 lost the log of a lab whose kernels showed "Disconnected")."""
     from course_lib.core.paths import LEARNER_ROOT_ENV, ROSJECT_DIR
     from course_lib.tools.testing import independent_env
 
-    shutil.rmtree(root, ignore_errors=True)
+    if root.exists():
+        previous = root.with_name(root.name + ".previous")
+        shutil.rmtree(previous, ignore_errors=True)
+        root.rename(previous)
     (root / "notebooks" / "my_files").mkdir(parents=True)
     (root / "rosject").symlink_to(ROSJECT_DIR, target_is_directory=True)
     env = independent_env(**{LEARNER_ROOT_ENV: str(root)})
