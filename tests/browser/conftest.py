@@ -62,12 +62,17 @@ def artifacts(request: pytest.FixtureRequest) -> Path:
     """Return this test's folder for screenshots (gitignored), empty; what the test's earlier
     attempt left there (a rerun's failed one, or the last run's) is kept as `<name>.previous`."""
     folder = ARTIFACTS / request.node.name
-    previous = folder.with_name(folder.name + ".previous")
-    if folder.exists():
-        shutil.rmtree(previous, ignore_errors=True)
-        folder.rename(previous)
+    _keep_as_previous(folder)
     folder.mkdir(parents=True)
     return folder
+
+
+def _keep_as_previous(folder: Path) -> None:
+    """Move `folder`, if there, to `<folder>.previous` (replacing an older one)."""
+    if folder.exists():
+        previous = folder.with_name(folder.name + ".previous")
+        shutil.rmtree(previous, ignore_errors=True)
+        folder.rename(previous)
 
 
 @pytest.fixture(scope="module")
@@ -89,10 +94,7 @@ def _learners_lab(root: Path, lessons: list[str], extra: Sequence[str] = ()) -> 
     from course_lib.core.paths import LEARNER_ROOT_ENV, ROSJECT_DIR
     from course_lib.tools.testing import independent_env
 
-    if root.exists():
-        previous = root.with_name(root.name + ".previous")
-        shutil.rmtree(previous, ignore_errors=True)
-        root.rename(previous)
+    _keep_as_previous(root)
     (root / "notebooks" / "my_files").mkdir(parents=True)
     (root / "rosject").symlink_to(ROSJECT_DIR, target_is_directory=True)
     env = independent_env(**{LEARNER_ROOT_ENV: str(root)})
