@@ -16,6 +16,7 @@ import re
 import threading
 import time
 from collections import deque
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -27,6 +28,7 @@ from ...core.errors import CourseError
 _log = logging.getLogger(__name__)
 
 __all__ = [
+    "MOVING_MPS",
     "FileValue",
     "OdomTrace",
     "distance_m",
@@ -44,7 +46,7 @@ PARAM_ERRORS = (CourseError, RuntimeError, TimeoutError)
 _STEADY_S = 0.2  # simulated seconds between the readings compared
 _SPEED_TOLERANCE = 0.002  # m/s
 _TICK = re.compile(r"Velocity parameter is: (-?[0-9.]+)")
-_MOVING_MPS = 0.01
+MOVING_MPS = 0.01  # m/s: a robot slower than this stands still
 
 
 def distance_m(a: Any, b: Any) -> float:
@@ -82,17 +84,21 @@ class OdomTrace:
     def __init__(self) -> None:
         self.readings: deque[tuple[float, Any]] = deque(maxlen=30000)
         self._world: Any = None
+        self._received = 0  # readings appended since attach, those dropped off the deque too
         self._cond = threading.Condition()
 
     def _on(self, reading: Any) -> None:
         with self._cond:
             self.readings.append((time.time(), reading))
+            self._received += 1
             self._cond.notify_all()
 
     def attach(self, world: Any) -> None:
         """Record `world`'s /odom from now on (once: a second attach moves the recording)."""
         self.detach()
-        self.readings.clear()
+        with self._cond:
+            self.readings.clear()
+            self._received = 0
         self._world = world
         world.add_odom_listener(self._on)
 
@@ -101,19 +107,46 @@ class OdomTrace:
             self._world.remove_odom_listener(self._on)
             self._world = None
 
-    def wait_until(self, wall: float, timeout: float) -> None:
-        """Wait until a reading arrived after wall time `wall` (or `timeout` passed)."""
-        deadline = time.monotonic() + timeout
+    def first_moving(self, since: float, until: float) -> Any | None:
+        """Return the first reading that arrived after wall time `since` with the robot
+        moving; wait for one up to wall time `until` (None: the robot stood still)."""
+        return self._wait_for(
+            lambda wall_time, reading: (
+                wall_time >= since and abs(reading.linear_mps) >= MOVING_MPS
+            ),
+            until,
+        )
+
+    def reading_after(self, wall: float, timeout: float) -> Any | None:
+        """Return the first reading that arrived at or after wall time `wall` (waited for)."""
+        return self._wait_for(lambda wall_time, _reading: wall_time >= wall, time.time() + timeout)
+
+    def wait_sim_time(self, sim_s: float, timeout: float) -> None:
+        """Wait until a reading of simulated time `sim_s` or later arrived (or `timeout` s)."""
+        self._wait_for(lambda _wall, reading: reading.time_s >= sim_s, time.time() + timeout)
+
+    def _wait_for(self, test: Callable[[float, Any], bool], until: float) -> Any | None:
+        """Return the first reading that `test(wall time it arrived, reading)` passes; wait
+        for one up to wall time `until`; None if none came."""
+        seen = 0  # readings tested so far, counted since attach (the oldest drop off the deque)
         with self._cond:
-            while not (self.readings and self.readings[-1][0] >= wall):
-                left = deadline - time.monotonic()
+            while True:
+                first = self._received - len(self.readings)  # the count of readings[0]
+                for wall_time, reading in itertools.islice(
+                    self.readings, max(0, seen - first), None
+                ):
+                    if test(wall_time, reading):
+                        return reading
+                seen = self._received
+                left = until - time.time()
                 if left <= 0:
-                    return
+                    return None
                 self._cond.wait(min(left, 0.2))
 
-    def speed(self, start: float, end: float) -> float:
-        """Return the mean forward speed between wall times `start` and `end` (m/s, /odom)."""
-        inside = [r for w, r in list(self.readings) if start <= w <= end]
+    def speed(self, start_s: float, end_s: float) -> float:
+        """Return the mean forward speed between simulated times `start_s` and `end_s` (m/s)."""
+        with self._cond:
+            inside = [r for _wall, r in self.readings if start_s <= r.time_s <= end_s]
         if len(inside) < 2:
             return 0.0
         return sum(r.linear_mps for r in inside) / len(inside)

@@ -130,7 +130,7 @@ def test_lesson10_launch_file(world_lesson: Lesson, stop_nodes: None) -> None:
     lesson = _lesson(10, world_lesson)
     launch = LaunchExercise(lesson)
     launch.arm()
-    kinds = []
+    verdicts = []
     for name, extra in [
         ("bare", ""),
         ("integer", ", parameters=[{'velocity': 1}]"),
@@ -141,11 +141,33 @@ def test_lesson10_launch_file(world_lesson: Lesson, stop_nodes: None) -> None:
             run = lesson.launch(path)
         except CourseError:  # the integer: the node stops at start-up, the launch says so
             run = None
-        verdict = launch.check()
-        kinds.append(verdict.kind or ("passed" if verdict.passed else verdict.message))
+        verdicts.append(launch.check())
         if run is not None:
             run.stop()
-    assert kinds == ["no_parameter", "integer", "passed"]
+    kinds = [v.kind or ("passed" if v.passed else v.message) for v in verdicts]
+    assert kinds == ["no_parameter", "integer", "passed"], [v.message for v in verdicts]
+
+
+def test_lesson10_a_node_the_simulation_hears_late(world_lesson: Lesson, stop_nodes: None) -> None:
+    """The robot begins to drive seconds after the node's first tick (the world paused until
+    then, as when a busy host's simulation hears a new node late): a right launch file still
+    passes, its speed measured from when the robot began to move."""
+    from course_lib.lessons.skills.exercises import LaunchExercise
+
+    lesson = _lesson(10, world_lesson)
+    launch = LaunchExercise(lesson)
+    launch.arm()
+    world = lesson.current_world
+    right = LAUNCH.format(extra=", parameters=[{'velocity': 0.18}]")
+    world.set_parameter("paused", True)
+    try:
+        run = lesson.launch(_params_file(lesson, "late.launch.py", right))
+        time.sleep(2.5)  # past the first seconds after the node's first tick
+    finally:
+        world.set_parameter("paused", False)
+    verdict = launch.check()
+    run.stop()
+    assert verdict.passed, verdict.message
 
 
 def test_lesson11_saved_panel(world_lesson: Lesson, stop_nodes: None) -> None:
