@@ -36,15 +36,19 @@ def change_within(
 
 
 def wait_still(page, folder: Path, timeout: float = 10.0, view: str = VIEW) -> float:  # type: ignore[no-untyped-def]
-    """Wait until two views a second apart match; return the last change measured."""
-    deadline = time.monotonic() + timeout
+    """Wait until two views a second apart match; return the last change measured.
+
+    The views are compared at least once, and for `timeout` seconds after the first one is
+    taken: on a slow host the first screenshot alone took 13 s, and a deadline set before
+    it left no comparison at all (ci56 reported 1.0, "the robot moves", of a still robot)."""
     before, _ = shot(page, folder, "stopping_0", view)
-    change = 1.0
-    while change > MOVED / 4 and time.monotonic() < deadline:
+    deadline = time.monotonic() + timeout
+    while True:
         page.wait_for_timeout(1000)  # the interval measured, not a wait for a condition
         after, _ = shot(page, folder, "stopping_1", view)
         change, before = changed_fraction(before, after), after
-    return change
+        if change <= MOVED / 4 or time.monotonic() >= deadline:
+            return change
 
 
 def drive_and_watch(
