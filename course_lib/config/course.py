@@ -127,8 +127,8 @@ class StartupExercises:
     )
     window_s: float = setting(
         2.0,
-        help="the speed is measured this many seconds after the node's first log line (its "
-        "first second, with room for discovery on a busy machine)",
+        help="the speed is measured this many simulated seconds after the robot began to "
+        "move (after the node's first log line if it stood still): its first seconds",
         ge=1.0,
         le=5.0,
     )
