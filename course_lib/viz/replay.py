@@ -95,7 +95,7 @@ def _set_animation(model: mujoco.MjModel, frames: Sequence[ReplayFrame], fps: in
     return {
         "type": "set_animation",
         "animations": animations,
-        "options": {"play": True, "repetitions": 1},
+        "options": {"play": False, "repetitions": 1},  # played once drawn (_PLAY_JS)
         "path": "",
     }
 
@@ -105,6 +105,14 @@ def _command_js(command: Any) -> str:
     payload = base64.b64encode(umsgpack.packb(lowered)).decode("ascii")
     return f'viewer.handle_command_bytearray(bytes("{payload}"));\n'
 
+
+# The animation starts once the scene has been drawn twice. Started as the page loads, its clock
+# ran through the first frame, which compiles the scene's shaders: on a busy machine that frame
+# outlasted a short replay, which ended (and went back to its start) before it was ever seen.
+_PLAY_JS = """requestAnimationFrame(function () {
+  requestAnimationFrame(function () { viewer.animator.play(); });
+});
+"""
 
 # A playhead on the speed plot follows the animation's time (meshcat's Animator actions).
 _PLAYHEAD_JS = """(function () {
@@ -170,7 +178,7 @@ def replay_html(
         'document.getElementById("needs-scripts").remove();\n'
         "function bytes(b64) { return Uint8Array.from(atob(b64), c => c.charCodeAt(0)); }\n"
         'var viewer = new MeshCat.Viewer(document.getElementById("meshcat-pane"));\n'
-        f"{body}{playhead}</script>\n</body>\n</html>\n"
+        f"{body}{_PLAY_JS}{playhead}</script>\n</body>\n</html>\n"
     )
 
 
