@@ -124,8 +124,8 @@ class SpinningNode:
             except Exception as err:
                 if self.closing or not self.context.ok():
                     return  # closing: spin ends with the context
-                self.spin_error = err
                 _log.error("%s ROS thread stopped", self._owner, exc_info=err)
+                self.spin_error = err  # after the log: who sees the error finds it logged
                 return
 
     def wait_future(self, future: Any, timeout: float) -> Any:

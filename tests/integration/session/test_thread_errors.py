@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import logging
 import threading
+import time
 
 import pytest
 import rclpy
@@ -30,8 +31,18 @@ def _thread_died(session: Session) -> bool:
     return wait_until(lambda: session.spin_error is not None, 10)
 
 
+class _SlowHandler(logging.Handler):
+    """Takes a second over each record before the test's capture sees it (a busy host)."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        time.sleep(1.0)
+
+
 def test_session_thread_error_is_logged_and_reported(caplog: pytest.LogCaptureFixture) -> None:
     session = Session()
+    slow = _SlowHandler()
+    logger = logging.getLogger("course_lib.session.session")
+    logger.addHandler(slow)  # the error is seen only once logged (ci57: seen, not yet logged)
     try:
         with caplog.at_level(logging.ERROR, logger="course_lib.session.session"):
             session.node.create_timer(0.01, _broken_callback)
@@ -44,6 +55,7 @@ def test_session_thread_error_is_logged_and_reported(caplog: pytest.LogCaptureFi
             session.wait_future(future, 0.1)
         assert str(raised.value) == MESSAGE
     finally:
+        logger.removeHandler(slow)
         session.close()
 
 
