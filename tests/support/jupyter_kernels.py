@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import queue
 import re
+import tempfile
 import time
 from contextlib import suppress
 from dataclasses import dataclass, field
@@ -51,11 +52,26 @@ class Kernel:
     """A real ipykernel started with jupyter_client, in the repository folder."""
 
     def __init__(self, env: dict[str, str] | None = None) -> None:
+        # its own stderr (not the worker's, which no report shows): said if it dies starting
+        self._stderr = tempfile.TemporaryFile()  # noqa: SIM115 (closed by shutdown)
         self.manager = KernelManager(kernel_name="python3")
-        self.manager.start_kernel(env=env or independent_env(), cwd=str(REPO_ROOT))
+        self.manager.start_kernel(
+            env=env or independent_env(), cwd=str(REPO_ROOT), stderr=self._stderr
+        )
         self.client = self.manager.blocking_client()
         self.client.start_channels()
-        self.client.wait_for_ready(timeout=60)
+        try:
+            self.client.wait_for_ready(timeout=60)
+        except RuntimeError as error:  # ci59: "Kernel died before replying to kernel_info"
+            said = self.stderr_tail()
+            self.shutdown()
+            raise RuntimeError(f"{error}; its stderr ended:\n{said}") from error
+
+    def stderr_tail(self, size: int = 4000) -> str:
+        """Return the end of what the kernel process wrote to its stderr."""
+        self._stderr.seek(0, 2)
+        self._stderr.seek(max(0, self._stderr.tell() - size))
+        return self._stderr.read().decode("utf-8", "replace")
 
     @property
     def pid(self) -> int:
@@ -112,6 +128,7 @@ class Kernel:
             self.manager.shutdown_kernel(now=True)
         with suppress(Exception):
             self.manager.cleanup_resources()
+        self._stderr.close()
 
 
 def course_pids(owner_pid: int) -> list[int]:
