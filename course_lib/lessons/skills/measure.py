@@ -131,10 +131,9 @@ class OdomTrace:
         seen = 0  # readings tested so far, counted since attach (the oldest drop off the deque)
         with self._cond:
             while True:
-                first = self._received - len(self.readings)  # the count of readings[0]
-                for wall_time, reading in itertools.islice(
-                    self.readings, max(0, seen - first), None
-                ):
+                fresh = min(self._received - seen, len(self.readings))  # the newest, untested
+                newest_first = itertools.islice(reversed(self.readings), fresh)
+                for wall_time, reading in reversed(list(newest_first)):
                     if test(wall_time, reading):
                         return reading
                 seen = self._received
