@@ -12,6 +12,7 @@ import functools
 import html
 import os
 import shlex
+import time
 from collections.abc import Sequence
 from typing import Any
 
@@ -59,6 +60,9 @@ class CommandResult:
 
 RUN_SEEN_WAIT_S = 3.0  # at most, after the node's first line, until this kernel has seen it
 FILE_RUN_WAIT_S = 10.0  # at most, with `--params-file`, for the first line or the crash
+RUN_FIRST_WAIT_S = 3.0  # for the first line of a node that starts at its usual speed
+SLOW_START_WAIT_S = 15.0  # in all, for a node still starting (silent, not yet in the graph)
+FIRST_WORDS_GRACE_S = 2.0  # after a silent node appears in the graph, for its first line
 
 
 def _started(child: Any, before: set[str]) -> list[str]:
@@ -67,6 +71,23 @@ def _started(child: Any, before: set[str]) -> list[str]:
 
     now = {n.full_name for n in client().node_names()}
     return course_hints.started_nodes((ln.text for ln in child.lines), before, now)
+
+
+def _wait_for_a_slow_start(child: Any, before: set[str]) -> None:
+    """Wait on for the first line of a node still starting (a busy host can take more than
+    RUN_FIRST_WAIT_S to start Python, rclpy and the node), since a line that comes after the
+    magic returns is shown nowhere. A node that is silent by design stops the wait once the
+    graph lists a node that was not there before (FIRST_WORDS_GRACE_S more for a first line);
+    the wait ends at SLOW_START_WAIT_S after the start in any case."""
+    from ..ros2.api.nodes_and_params import client
+
+    deadline = time.monotonic() + SLOW_START_WAIT_S - RUN_FIRST_WAIT_S
+    while child.alive and time.monotonic() < deadline:
+        if child.wait_for_start(0.25, crash_wait=FILE_RUN_WAIT_S) is not None:
+            return
+        if {n.full_name for n in client().node_names()} - before:
+            child.wait_for_start(FIRST_WORDS_GRACE_S, crash_wait=FILE_RUN_WAIT_S)
+            return
 
 
 def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) -> int:
@@ -85,11 +106,15 @@ def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) ->
     if taken:
         print(taken)
     files = course_hints.params_files(cmd)
-    before = {n.full_name for n in client().node_names()} if files else set()
+    before = {n.full_name for n in client().node_names()}
     child = get_session().spawn(cmd, name=name, cwd=ctx.cwd)
     # a params file's hint needs the node's first line (or its traceback): wait longer for it;
     # a node failing at start-up is waited for to its end (its last line says why)
-    child.wait_for_start(FILE_RUN_WAIT_S if files else 3.0, crash_wait=FILE_RUN_WAIT_S)
+    first = child.wait_for_start(
+        FILE_RUN_WAIT_S if files else RUN_FIRST_WAIT_S, crash_wait=FILE_RUN_WAIT_S
+    )
+    if first is None:
+        _wait_for_a_slow_start(child, before)
     remember(child, name)
     if child.alive:  # the next command (`%ros2 node list`) sees the new node, even under load
         client().wait_all_seen(timeout=RUN_SEEN_WAIT_S)
