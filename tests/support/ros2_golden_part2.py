@@ -10,6 +10,7 @@ import subprocess
 import sys
 import threading
 import time
+from typing import Any
 
 from ros2_golden import GOLDEN, compare
 
@@ -24,6 +25,8 @@ SKIPPED = {
     "service_type_daemon_autostart": "a discovery miss of the real tool (README: the course "
     "finds running nodes); `daemon_service_type` checks the same command",
 }
+_FIRST_LINE_WAIT_S = 30.0  # at most, for an interrupted command's first line
+
 SUBSCRIBER = (
     "import rclpy, sys\n"
     "from geometry_msgs.msg import Twist\n"
@@ -81,26 +84,48 @@ def compare2(case: dict, got: tuple[str, str, int]) -> None:
 
 
 def interrupt_console(env: dict[str, str], command: str, after_s: float) -> tuple[str, str, int]:
-    """Run a command line in a terminal's way and press Ctrl-C after `after_s` seconds."""
+    """Run a command line in a terminal's way and press Ctrl-C `after_s` seconds after its
+    first line, as a person would once the command has started (every command these tests
+    interrupt says something first; on a busy host Python alone can take seconds to start:
+    ci63's `topic bw`, interrupted 3.5 s after it was started, had printed no figure yet)."""
     import shlex
 
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "course_lib.ros2.command.cli", *shlex.split(command)[1:]],
-        env=env,
-        cwd=GOLDEN,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        start_new_session=True,
-    )
-    try:
-        time.sleep(after_s)
-        os.killpg(proc.pid, signal.SIGINT)
-        stdout, stderr = proc.communicate(timeout=20)
-    finally:
-        if proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGKILL)
-    return stdout, stderr, proc.returncode
+    said: dict[str, list[str]] = {"stdout": [], "stderr": []}
+    first_line = threading.Event()
+
+    def read(name: str, stream: Any) -> None:
+        for line in stream:
+            said[name].append(line)
+            first_line.set()
+
+    with (
+        subprocess.Popen(  # its exit closes the pipes and reaps the process
+            [sys.executable, "-m", "course_lib.ros2.command.cli", *shlex.split(command)[1:]],
+            env=env,
+            cwd=GOLDEN,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            start_new_session=True,
+        ) as proc
+    ):
+        readers = [
+            threading.Thread(target=read, args=(name, getattr(proc, name)), daemon=True)
+            for name in said
+        ]
+        for reader in readers:
+            reader.start()
+        try:
+            first_line.wait(_FIRST_LINE_WAIT_S)
+            time.sleep(after_s)
+            os.killpg(proc.pid, signal.SIGINT)
+            proc.wait(timeout=20)
+            for reader in readers:
+                reader.join(timeout=5)
+        finally:
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGKILL)
+    return "".join(said["stdout"]), "".join(said["stderr"]), proc.returncode
 
 
 def interrupt_api(command: str, after_s: float) -> tuple[str, str, int]:
