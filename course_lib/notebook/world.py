@@ -58,7 +58,7 @@ class World:
         from geometry_msgs.msg import Twist
         from std_msgs.msg import Float64MultiArray, UInt32
 
-        from ..sim.ros.topics import RESET_DONE_TOPIC, RESET_TOPIC
+        from ..sim.ros.topics import RESET_DONE_TOPIC, RESET_TOPIC, reset_done_qos
 
         self.session = session
         self.settings = settings
@@ -79,7 +79,7 @@ class World:
         self._cmd: Any = None
         self._reset = node.create_publisher(UInt32, RESET_TOPIC, 10)
         self._reset_sub = node.create_subscription(
-            UInt32, RESET_DONE_TOPIC, self._on_reset_done, 10
+            UInt32, RESET_DONE_TOPIC, self._on_reset_done, reset_done_qos()
         )
         self._resets_done: set[int] = set()
         self._reset_count = 0

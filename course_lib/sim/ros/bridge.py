@@ -26,7 +26,7 @@ from ..world.samples import FIELDS, SAMPLES_TOPIC, batch_size
 from .messages import Frames, MessageFactory
 from .nodes import create_nodes, node_specs
 from .tf import TfFactory, TFMessage
-from .topics import RESET_DONE_TOPIC, RESET_TOPIC
+from .topics import RESET_DONE_TOPIC, RESET_TOPIC, reset_done_qos
 from .urdf import robot_urdf
 
 __all__ = ["RESET_DONE_TOPIC", "RESET_TOPIC", "Bridge"]
@@ -136,7 +136,7 @@ class Bridge:
         )
         n["turtlebot3_diff_drive"].create_subscription(Twist, "/cmd_vel", self._on_cmd_vel, 10)
         n["mujoco"].create_subscription(UInt32, RESET_TOPIC, self._on_reset, 10)
-        self._reset_done = n["mujoco"].create_publisher(UInt32, RESET_DONE_TOPIC, 10)
+        self._reset_done = n["mujoco"].create_publisher(UInt32, RESET_DONE_TOPIC, reset_done_qos())
         self._samples = n["mujoco"].create_publisher(Float64MultiArray, SAMPLES_TOPIC, 10)
 
     def _spin(self, executor: SingleThreadedExecutor) -> None:

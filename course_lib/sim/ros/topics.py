@@ -4,7 +4,20 @@ Hidden from `ros2 topic list` (a leading underscore): World.reset() sends a numb
 RESET_TOPIC and waits for the same number on RESET_DONE_TOPIC.
 """
 
-__all__ = ["RESET_DONE_TOPIC", "RESET_TOPIC"]
+from typing import Any
+
+__all__ = ["RESET_DONE_TOPIC", "RESET_TOPIC", "reset_done_qos"]
 
 RESET_TOPIC = "/_mujoco/reset"
 RESET_DONE_TOPIC = "/_mujoco/reset_done"
+
+
+def reset_done_qos() -> Any:
+    """Return RESET_DONE_TOPIC's QoS, the same on both sides: transient local, the last ten
+    numbers kept. A kernel sees the simulation's publisher before the simulation has matched
+    the kernel's subscription (each side discovers the other on its own), and a volatile
+    reply sent in between reached no one (ci64: a world restarted on a loaded host, "the
+    simulation did not reset within 5 s")."""
+    from rclpy.qos import DurabilityPolicy, QoSProfile
+
+    return QoSProfile(depth=10, durability=DurabilityPolicy.TRANSIENT_LOCAL)
