@@ -73,19 +73,21 @@ def _started(child: Any, before: set[str]) -> list[str]:
     return course_hints.started_nodes((ln.text for ln in child.lines), before, now)
 
 
-def _wait_for_a_slow_start(child: Any, before: set[str]) -> None:
+def _wait_for_a_slow_start(child: Any) -> None:
     """Wait on for the first line of a node still starting (a busy host can take more than
     RUN_FIRST_WAIT_S to start Python, rclpy and the node), since a line that comes after the
     magic returns is shown nowhere. A node that is silent by design stops the wait once the
-    graph lists a node that was not there before (FIRST_WORDS_GRACE_S more for a first line);
-    the wait ends at SLOW_START_WAIT_S after the start in any case."""
+    graph shows a node of `child`'s process (its /rosout publisher, made first), then
+    FIRST_WORDS_GRACE_S more for a first line; the wait ends at SLOW_START_WAIT_S after the
+    start in any case."""
+    from ..lab.drivers import publishers
     from ..ros2.api.nodes_and_params import client
 
     deadline = time.monotonic() + SLOW_START_WAIT_S - RUN_FIRST_WAIT_S
     while child.alive and time.monotonic() < deadline:
         if child.wait_for_start(0.25, crash_wait=FILE_RUN_WAIT_S) is not None:
             return
-        if {n.full_name for n in client().node_names()} - before:
+        if any(p.runs_in(child.pid) for p in publishers(client(), "/rosout")):
             child.wait_for_start(FIRST_WORDS_GRACE_S, crash_wait=FILE_RUN_WAIT_S)
             return
 
@@ -106,7 +108,7 @@ def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) ->
     if taken:
         print(taken)
     files = course_hints.params_files(cmd)
-    before = {n.full_name for n in client().node_names()}
+    before = {n.full_name for n in client().node_names()} if files else set()
     child = get_session().spawn(cmd, name=name, cwd=ctx.cwd)
     # a params file's hint needs the node's first line (or its traceback): wait longer for it;
     # a node failing at start-up is waited for to its end (its last line says why)
@@ -114,7 +116,7 @@ def _background_run(cmd: list[str], name: str, ctx: Any, *, notes: list[str]) ->
         FILE_RUN_WAIT_S if files else RUN_FIRST_WAIT_S, crash_wait=FILE_RUN_WAIT_S
     )
     if first is None:
-        _wait_for_a_slow_start(child, before)
+        _wait_for_a_slow_start(child)
     remember(child, name)
     if child.alive:  # the next command (`%ros2 node list`) sees the new node, even under load
         client().wait_all_seen(timeout=RUN_SEEN_WAIT_S)

@@ -32,6 +32,7 @@ def slow_python(tmp_path: Path) -> Iterator[Callable[[float], None]]:
     """Slow down the start of the session's children's Python by the given seconds."""
     session = get_session()
     before = session.env.get("PYTHONPATH")
+    running = {child.pid for child in session.children}
 
     def slow(seconds: float) -> None:
         (tmp_path / "sitecustomize.py").write_text(f"import time\ntime.sleep({seconds})\n")
@@ -45,7 +46,8 @@ def slow_python(tmp_path: Path) -> Iterator[Callable[[float], None]]:
         else:
             session.env["PYTHONPATH"] = before
         for child in session.children:
-            child.stop()
+            if child.pid not in running:  # the test's own nodes, nothing else
+                child.stop()
 
 
 def test_a_node_slow_to_start_has_its_first_line_shown(
@@ -73,3 +75,15 @@ def test_a_silent_node_ends_the_wait_once_the_graph_lists_it(
     assert result.output.text == "", result.output
     assert took < SLOW_START_WAIT_S - 3.0, took
     assert "/param_vel_node" in api.node_list()
+
+
+def test_a_rerun_cell_shows_the_new_nodes_first_line(
+    slow_python: Callable[[float], None],
+) -> None:
+    """Run twice, as a re-run cell does: the first node (already in the graph) is stopped,
+    and only the new, slow one's own first line ends the wait."""
+    assert "Velocity parameter is" in run_line("run parameter_tests param_vel").output.text
+    slow_python(SLOW_S)
+    result = run_line("run parameter_tests param_vel")
+    assert "Velocity parameter is" in result.output.text, result.output
+    assert wait_until(lambda: api.node_list().count("/param_vel_node") == 1, 10.0)

@@ -9,8 +9,6 @@ the reply was sent: it must still receive it.
 
 from __future__ import annotations
 
-import threading
-
 import pytest
 from std_msgs.msg import UInt32
 
@@ -30,25 +28,20 @@ def test_a_reset_reply_reaches_a_subscription_made_after_it(session: Session) ->
         "reset_asker", domain_id=session.domain_id, owner="the test's", thread_name="asker"
     )
     heard: dict[str, list[int]] = {"early": [], "late": []}
-    lock = threading.Lock()
-
-    def hear(which: str):  # type: ignore[no-untyped-def]
-        def on_reply(msg: UInt32) -> None:
-            with lock:
-                heard[which].append(msg.data)
-
-        return on_reply
-
     try:
         node = asker.node
         # a plain subscription matched before the reset: it tells when the reply has been sent
-        node.create_subscription(UInt32, RESET_DONE_TOPIC, hear("early"), 10)
+        node.create_subscription(
+            UInt32, RESET_DONE_TOPIC, lambda msg: heard["early"].append(msg.data), 10
+        )
         request = node.create_publisher(UInt32, RESET_TOPIC, 10)
         assert wait_until(lambda: request.get_subscription_count() > 0, 10.0)
         assert wait_until(lambda: node.count_publishers(RESET_DONE_TOPIC) > 0, 10.0)
         request.publish(UInt32(data=NUMBER))
         assert wait_until(lambda: NUMBER in heard["early"], 10.0), "the simulation never replied"
-        node.create_subscription(UInt32, RESET_DONE_TOPIC, hear("late"), reset_done_qos())
+        node.create_subscription(
+            UInt32, RESET_DONE_TOPIC, lambda msg: heard["late"].append(msg.data), reset_done_qos()
+        )
         assert wait_until(lambda: NUMBER in heard["late"], 5.0), heard
     finally:
         asker.close()
