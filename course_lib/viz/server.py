@@ -85,7 +85,29 @@ _PAGE = """<!DOCTYPE html>
 <input type="checkbox" id="tf-frames"> TF frames</label>
 <script src="main.min.js"></script>
 <script>
-var viewer = new MeshCat.Viewer(document.getElementById("meshcat-pane"));
+// Drawn on demand: meshcat's own loop (off here) asks the browser for a frame 60 times a
+// second for as long as the page is open, with nothing new to draw; in a browser without a
+// GPU that kept a still robot's view at about a tenth of a core. Here a frame is asked for
+// when meshcat marks the scene changed (a pose, the camera moved, a resize), and each
+// frame of a playing animation asks for the next.
+var viewer = new MeshCat.Viewer(document.getElementById("meshcat-pane"), false);
+(function () {
+  var asked = false;
+  function frame() {
+    asked = false;
+    viewer.animator.update();  // a playing animation marks the scene changed: next frame
+    if (viewer.needs_render) { viewer.render(); }
+  }
+  function ask() {
+    if (!asked) { asked = true; requestAnimationFrame(frame); }
+  }
+  var mark = viewer.set_dirty.bind(viewer);
+  viewer.set_dirty = function () { mark(); ask(); };
+  viewer.animate = ask;  // what meshcat calls to restart its loop after a recording
+  var animator = Object.getPrototypeOf(viewer.animator), play = animator.play;
+  animator.play = function () { play.call(this); ask(); };
+  ask();
+})();
 // One message carries a frame's poses: paths and their 4x4 matrices (column-major), in a row.
 var handle_one = viewer.handle_command.bind(viewer);
 viewer.handle_command = function (command) {

@@ -8,7 +8,7 @@ import pytest
 from notebook_ui import run_all_cells, run_cell, wait_all_ran
 from pixels import changed_fraction
 from terminal import Terminal
-from view import MOVED, VIEW, drive_and_watch
+from view import MOVED, VIEW, drive_and_watch, frames_asked
 from view import shot as _shot
 from view import wait_still as _wait_still
 
@@ -50,6 +50,11 @@ def test_terminal_param_set_stops_the_robot(page, lab, artifacts: Path) -> None:
         terminal.run("ros2 param set /param_vel_node velocity 0.0", "Set parameter successful")
         still = _wait_still(page, artifacts)
         assert still <= MOVED / 4, f"robot still moves after 0.0 ({still:.4f}): {artifacts}"
+        # a still robot's view draws (almost) nothing: meshcat's own loop asked for 60 frames a
+        # second, about a tenth of a core in a browser without a GPU; a robot that settles
+        # may still send a few poses
+        asked = frames_asked(page)
+        assert asked < 30, f"a still robot's view asked for {asked} frames in 2 s"
         got = terminal.run("ros2 param get /param_vel_node velocity", "Double value is:")
         assert "Double value is: 0.0" in got, got
     finally:

@@ -8,7 +8,15 @@ from pathlib import Path
 
 from pixels import changed_fraction, is_blank
 
-__all__ = ["MOVED", "VIEW", "change_within", "drive_and_watch", "shot", "wait_still"]
+__all__ = [
+    "MOVED",
+    "VIEW",
+    "change_within",
+    "drive_and_watch",
+    "frames_asked",
+    "shot",
+    "wait_still",
+]
 
 VIEW = 'iframe[title="3D view of the simulated robot"]'
 MOVED = 0.002  # share of the view's pixels that change when the robot drives for a second
@@ -68,3 +76,20 @@ def drive_and_watch(
     drive()
     change, _ = change_within(page, folder, first, seconds=seconds, view=view)
     return change
+
+
+def frames_asked(page, seconds: float = 2.0, view: str = VIEW) -> int:  # type: ignore[no-untyped-def]
+    """Return how many animation frames the (first) view's page asks for in `seconds`."""
+    frame = page.locator(view).first.element_handle().content_frame()
+    frame.evaluate(
+        """() => {
+            window.framesAsked = 0;
+            const ask = window.requestAnimationFrame.bind(window);
+            window.requestAnimationFrame = (callback) => {
+                window.framesAsked++;
+                return ask(callback);
+            };
+        }"""
+    )
+    page.wait_for_timeout(seconds * 1000)
+    return int(frame.evaluate("window.framesAsked"))
