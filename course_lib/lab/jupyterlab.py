@@ -51,17 +51,13 @@ def course_server_options() -> list[str]:
         f"--LabApp.extra_labextensions_path={LAB_EXTENSIONS_DIR}",
         # a saved notebook keeps no live 3D view or widget (they would show errors reopened)
         "--ContentsManager.pre_save_hook=course_lib.core.live_outputs.scrub_on_save",
-        *_NO_NODE_OPTIONS,
+        # Where Node.js is installed (a hub host has it for its proxy), JupyterLab ran it per
+        # server start and page load: `npm prefix -g` (jupyter-lsp looking for language
+        # servers: the course ships none) and, for the page's build check (off in
+        # lab_settings/page_config.json: the course's extensions come prebuilt),
+        # `node-version-check` and `yarn config`. About 1.6 CPU-s on a busy 2-core host.
+        "--LanguageServerManager.autodetect=False",
     ]
-
-
-# Where Node.js is installed (a hub host has it for its proxy), JupyterLab ran it four times
-# per server start and page load: `npm prefix -g` (jupyter-lsp looking for language servers),
-# `node-version-check` and `yarn config` (the page's build check), and `yarn config` as
-# jupyterlab.labapp is imported (that one stays). About 2.4 CPU-seconds on a busy 2-core host,
-# for nothing a learner uses: the course's extensions come prebuilt, a learner builds none.
-# The page's build check is off in lab_settings/page_config.json.
-_NO_NODE_OPTIONS = ["--LanguageServerManager.autodetect=False"]
 
 
 def lab_argv(extra: Sequence[str] = ()) -> list[str]:

@@ -30,8 +30,7 @@ LESSON = "01_setup_check.ipynb"
 def test_a_lab_slow_to_listen_answers_its_first_request() -> None:
     folder = ARTIFACTS / "lab-slow-to-listen"
     shutil.rmtree(folder, ignore_errors=True)
-    path = os.pathsep.join(p for p in (str(HERE), os.environ.get("PYTHONPATH", "")) if p)
-    lab = LabServer([], folder, env=independent_env(PYTHONPATH=path), extra=[EXTENSION])
+    lab = LabServer([], folder, env=_with_extensions_here(), extra=[EXTENSION])
     try:
         assert "slow_to_listen | extension was successfully loaded" in lab.process.text()
         request = urllib.request.Request(
@@ -56,8 +55,7 @@ def test_a_page_load_starts_no_node_program(browser) -> None:  # type: ignore[no
     folder = ARTIFACTS / "lab-spawn-log"
     shutil.rmtree(folder, ignore_errors=True)
     log = folder / "spawned.jsonl"
-    path = os.pathsep.join(p for p in (str(HERE), os.environ.get("PYTHONPATH", "")) if p)
-    env = independent_env(PYTHONPATH=path, **{SPAWN_LOG_ENV: str(log)})
+    env = _with_extensions_here(**{SPAWN_LOG_ENV: str(log)})
     lab = LabServer([LESSON], folder, env=env, extra=[SPAWN_LOG])
     page = browser.new_page(viewport={"width": 1280, "height": 1000})
     try:
@@ -75,6 +73,12 @@ def test_a_page_load_starts_no_node_program(browser) -> None:  # type: ignore[no
     finally:
         page.close()
         lab.stop()
+
+
+def _with_extensions_here(**extra: str) -> dict[str, str]:
+    """Return a lab's environment in which this folder's server extensions can be loaded."""
+    path = os.pathsep.join(p for p in (str(HERE), os.environ.get("PYTHONPATH", "")) if p)
+    return independent_env(PYTHONPATH=path, **extra)
 
 
 def _read(path: Path) -> str:

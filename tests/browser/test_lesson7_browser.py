@@ -55,6 +55,16 @@ def test_terminal_param_set_stops_the_robot(page, lab, artifacts: Path) -> None:
         # may still send a few poses
         asked = frames_asked(page)
         assert asked < 30, f"a still robot's view asked for {asked} frames in 2 s"
+        # a learner turns the camera with the mouse: the view draws each new angle
+        turned_0, _ = _shot(page, artifacts, "camera_0")
+        box = page.locator(VIEW).first.bounding_box()
+        x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+        page.mouse.move(x, y)
+        page.mouse.down()
+        page.mouse.move(x + 150, y + 40, steps=10)
+        page.mouse.up()
+        turned_1, path = _shot(page, artifacts, "camera_1")
+        assert changed_fraction(turned_0, turned_1) > MOVED, f"the camera did not turn: {path}"
         got = terminal.run("ros2 param get /param_vel_node velocity", "Double value is:")
         assert "Double value is: 0.0" in got, got
     finally:
