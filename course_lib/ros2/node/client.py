@@ -142,16 +142,39 @@ class RosClient:
             timing=self._timing,
             min_age_s=min_age_s,
             starting=self._starting,
+            spinning=self._spinning,
         )
 
     def _starting(self) -> frozenset[int]:
         return frozenset(domain_newcomers(self._domain_id, joined=True))
 
+    def _spinning(self, pids: frozenset[int], timeout: float) -> bool:
+        """Wait (at most `timeout` s) until every named node of these processes (the low 16
+        bits of their pids, as participants carry them) answers a parameter request; return
+        whether all did. Hidden nodes (the course's own clients) have no parameter services."""
+        deadline = time.monotonic() + timeout
+        holders, _settled = self._holders()
+        nodes = [
+            name
+            for name, prefixes in holders.items()
+            if not _is_hidden_name(name) and any(prefix_pid(p) in pids for p in prefixes)
+        ]
+        return all(
+            self.answers(name, timeout=max(0.0, deadline - time.monotonic())) for name in nodes
+        )
+
     def wait_joined(self) -> None:
         """Wait (a warm client) until a node whose process is starting has been seen whole:
         what a lookup counts (publishers, services) is then all of it, every time."""
         if self.age() >= self._timing.warm_s:
-            wait_joined(self.graph_view, self._timing, self._starting, time.monotonic, time.sleep)
+            wait_joined(
+                self.graph_view,
+                self._timing,
+                self._starting,
+                time.monotonic,
+                time.sleep,
+                self._spinning,
+            )
 
     def wait_all_seen(self, timeout: float) -> bool:
         """Wait (at most `timeout` s) until this client has discovered every participant its

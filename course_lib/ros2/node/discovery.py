@@ -203,11 +203,13 @@ def wait_joined(
     starting: Callable[[], frozenset[int]],
     clock: Callable[[], float],
     sleep: Callable[[float], None],
+    spinning: Callable[[frozenset[int], float], object] | None = None,
 ) -> None:
     """Wait (a warm client) until every young process of the domain (`starting()`: their
-    pids, re-read as they age) is seen as a participant with its endpoints named, and the
-    graph stayed the same for NEWCOMER_QUIET_S; at most NEWCOMER_S (a process never joining
-    DDS)."""
+    pids, re-read as they age) is seen as a participant with its endpoints named, its nodes
+    spin (`spinning(pids, timeout)` waits until they answer a request: their constructors,
+    which make their publishers, are done), and the graph stayed the same for
+    NEWCOMER_QUIET_S since; at most NEWCOMER_S (a process never joining DDS)."""
     start = clock()
     young = {pid & 0xFFFF for pid in starting()}
     if not young:
@@ -215,8 +217,17 @@ def wait_joined(
     current = view()
     changed = start
     polls = 0
+    asked: set[int] = set()
     while clock() - start < NEWCOMER_S:
         joined = young <= current.participant_pids and not current.unknown_endpoints
+        if joined and spinning is not None and not young <= asked:
+            # a constructor that pauses (a busy host) between its services and its publisher
+            # left the graph quiet for longer than NEWCOMER_QUIET_S: the node itself says when
+            # it is done, by answering once it spins
+            spinning(frozenset(young - asked), NEWCOMER_S - (clock() - start))
+            asked |= young
+            current, changed = view(), clock()
+            continue
         if joined and clock() - changed >= max(timing.quiet_s, NEWCOMER_QUIET_S):
             return
         sleep(POLL_S)
@@ -237,6 +248,7 @@ def wait_settled(
     clock: Callable[[], float] = time.monotonic,
     sleep: Callable[[float], None] = time.sleep,
     starting: Callable[[], frozenset[int]] | None = None,
+    spinning: Callable[[frozenset[int], float], object] | None = None,
 ) -> GraphView:
     """Wait until a client node born at `born` sees the whole graph; return that view.
 
@@ -248,11 +260,11 @@ def wait_settled(
     NAME_WAIT_S for a node whose endpoints are seen but whose name has not arrived. A warm
     client waits too while a young process of the domain exists (`starting()`): until
     each one's participant is seen, its endpoints named, and the graph stayed the same for
-    `quiet_s`; at most NEWCOMER_S. So a command run moments after
-    a node started counts that node's endpoints, every time.
+    `quiet_s` once its nodes spin (`spinning`: see wait_joined); at most NEWCOMER_S. So a
+    command run moments after a node started counts that node's endpoints, every time.
     """
     if starting is not None and clock() - born >= timing.warm_s:
-        wait_joined(view, timing, starting, clock, sleep)
+        wait_joined(view, timing, starting, clock, sleep, spinning)
     start = clock()
     current = view()
     counting = current.missing_participants is not None
@@ -286,7 +298,8 @@ NEWCOMER_S = 6.0
 # that is no ROS node (a learner's plain script): it holds no command longer.
 UNJOINED_S = 3.0
 # A new node creates its endpoints one by one as its constructor runs (its publishers after
-# its parameter services): it is taken as whole once the graph stayed the same this long.
+# its parameter services): it is taken as whole once it spins (it answers a request) and the
+# graph then stayed the same this long (a node without parameter services: this long).
 NEWCOMER_QUIET_S = 0.5
 _CLIENT_MODULES = ("course_lib.ros2.command.cli", "course_lib.ros2.command.quick")
 

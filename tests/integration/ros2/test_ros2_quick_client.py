@@ -15,18 +15,20 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
 from ros2_golden import GOLDEN, compare, console_env, golden_cases, reset_parameters, start_node
 from ros2_golden_part2 import CASES as CASES2
 from ros2_golden_part2 import SKIPPED, compare2, names
 
+from course_lib.core import procfs
 from course_lib.core.paths import WORKSPACE_INSTALL_DIR, venv_bin_dir
 from course_lib.core.waiting import wait_until
 from course_lib.processes.domain import lease_domain
 from course_lib.ros2.command.quick import NO_FALLBACK_ENV, NO_FALLBACK_EXIT, daemon_serves
-from course_lib.ros2.node.client import DISCOVERY_WAIT_S
-from course_lib.ros2.node.connect import daemon_running, stop_daemon
+from course_lib.ros2.node.client import DISCOVERY_WAIT_S, YOUNG_CLIENT_S
+from course_lib.ros2.node.connect import daemon_pids, daemon_running, stop_daemon
 from course_lib.ros2.node.session_client import client
 from course_lib.session.session import session_env
 
@@ -227,6 +229,41 @@ def test_launch_of_a_missing_package_lists_only_the_callers_prefixes(tmp_path) -
     case = CASES["launch_missing_package"]
     expected = case["stderr"].replace("['install', '<venv>']", repr([str(tmp_path), sys.prefix]))
     assert (proc.stdout, proc.stderr, proc.returncode) == ("", expected, case["exit"])
+
+
+# A node whose constructor pauses between its parameter services and its publisher, as one
+# starved on a busy host does (ci74: the graph held still longer than the daemon waited for a
+# newcomer, and `ros2 topic info` said "Unknown topic" of a node started moments before).
+PAUSED_NODE = """
+import time, rclpy
+from geometry_msgs.msg import Twist
+rclpy.init()
+node = rclpy.create_node("paused_vel_node")
+time.sleep(1.5)
+node.create_publisher(Twist, "paused_cmd_vel", 10)
+rclpy.spin(node)
+"""
+
+
+def _daemon_age(domain: int) -> float:
+    """Return how long the domain's daemon has run (s)."""
+    (pid,) = daemon_pids(domain)
+    uptime = float(Path("/proc/uptime").read_text().split()[0])
+    return uptime - int(procfs.start_time(pid) or 0) / os.sysconf("SC_CLK_TCK")
+
+
+def test_a_node_whose_constructor_pauses_is_counted_whole(ros_session, daemon) -> None:  # type: ignore[no-untyped-def]
+    assert wait_until(client().graph_complete, 20), "the domain never settled"
+    env = {**console_env(ros_session), NO_FALLBACK_ENV: "1"}
+    # a warm daemon's case: a younger one looks for a name it does not know yet anyway
+    time.sleep(max(0.0, YOUNG_CLIENT_S + 0.5 - _daemon_age(ros_session.domain_id)))
+    child = ros_session.spawn([sys.executable, "-c", PAUSED_NODE], name="paused_vel")
+    try:
+        info = _quick(env, "ros2 topic info /paused_cmd_vel")
+    finally:
+        child.stop()
+    expected = "Type: geometry_msgs/msg/Twist\nPublisher count: 1\nSubscription count: 0\n"
+    assert (info.stdout, info.stderr, info.returncode) == (expected, "", 0)
 
 
 @pytest.mark.parametrize("round_", range(3))

@@ -69,6 +69,7 @@ class Graph(FakeClock):
         min_age_s: float = 0.0,
         start: float = 0.0,
         starting: object = None,
+        spinning: object = None,
     ) -> GraphView:
         self.now = start
         return wait_settled(
@@ -79,6 +80,7 @@ class Graph(FakeClock):
             clock=self.clock,
             sleep=self.sleep,
             starting=starting,  # type: ignore[arg-type]
+            spinning=spinning,  # type: ignore[arg-type]
         )
 
 
@@ -236,6 +238,29 @@ def test_a_warm_client_waits_for_a_node_that_is_starting_and_counts_all_of_it() 
     graph = Graph(JOINING)
     assert graph.settle(born=-60.0, starting=lambda: frozenset({4242})).endpoints == 10
     assert 1.15 <= graph.now <= 1.2  # its last endpoint, then NEWCOMER_QUIET_S
+
+
+def test_a_warm_client_waits_until_a_paused_constructor_is_done() -> None:
+    """On a busy host a constructor paused 1.2 s between its parameter services and its
+    publisher: the graph held still past NEWCOMER_QUIET_S, and `ros2 topic info` moments after
+    the node started said "Unknown topic" (ci74). The node says when it is done: it answers a
+    request once it spins, after its constructor."""
+    paused = {**JOINING, 0.65: JOINING[0.6], 1.85: JOINING[0.65]}  # the publisher at 1.85 s
+    graph = Graph(paused)
+    asked: list[tuple[frozenset[int], float]] = []
+
+    def spinning(pids: frozenset[int], timeout: float) -> bool:
+        asked.append((pids, graph.now))
+        graph.sleep(max(0.0, 1.9 - graph.now))  # it answers at 1.9 s, once it spins
+        return True
+
+    young = lambda: frozenset({0x10000 + 4242})  # noqa: E731 (a pid past 16 bits)
+    assert graph.settle(born=-60.0, starting=young, spinning=spinning).endpoints == 10
+    assert [pids for pids, _at in asked] == [frozenset({4242})]  # asked once,
+    assert asked[0][1] == pytest.approx(0.6, abs=0.02)  # as soon as it joined
+    assert 2.4 <= graph.now <= 2.45  # its answer, then NEWCOMER_QUIET_S
+    # without asking it (before): the view of 1.1 s, its publisher missing
+    assert Graph(paused).settle(born=-60.0, starting=young).endpoints == 9
 
 
 def test_a_warm_client_with_no_young_process_answers_at_once() -> None:
