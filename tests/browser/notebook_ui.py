@@ -65,11 +65,15 @@ def _what_ran_where(page) -> str:  # type: ignore[no-untyped-def]
           const tab = document.querySelector('#jp-main-dock-panel .lm-TabBar-tab.lm-mod-current');
           const config = document.getElementById('jupyter-config-data');
           const base = JSON.parse(config.textContent).baseUrl;
-          const sessions = await (await fetch(`${{base}}api/sessions`)).json();
+          const reply = await fetch(`${{base}}api/sessions`);
+          const sessions = await reply.json();
           return JSON.stringify({{
             front: tab && tab.textContent, prompts: {_PROMPTS},
-            sessions: sessions.map(s => [s.path, s.kernel.id, s.kernel.execution_state,
-                                          s.kernel.connections, s.kernel.last_activity]),
+            // what the server said instead, if not a list (ci76: a page of a hub's server)
+            sessions: Array.isArray(sessions)
+              ? sessions.map(s => [s.path, s.kernel.id, s.kernel.execution_state,
+                                   s.kernel.connections, s.kernel.last_activity])
+              : [reply.status, sessions],
           }}, null, 1);
         }}"""
     )

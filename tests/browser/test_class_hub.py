@@ -19,7 +19,7 @@ from typing import Any
 import pytest
 from class_hub import ClassHub, processes_of, server_token, stop_own_server, uid_of
 from lab_server import ARTIFACTS
-from notebook_ui import add_cell, run_all_cells, run_cell, show_tab, wait_all_ran
+from notebook_ui import run_all_cells, run_cell, show_tab, wait_all_ran
 from terminal import Terminal
 from view import MOVED, VIEW, drive_and_watch
 
@@ -82,11 +82,12 @@ def _lesson_7_passed(page: Any, artifacts: Path) -> None:
 
 def _view_moves(page: Any, artifacts: Path) -> float:
     """Put the robot back at its start (the world's cell does), drive it forward for a few
-    seconds and return how much the 3D view changed meanwhile."""
+    seconds with the lesson's own cells and return how much the 3D view changed meanwhile.
+    (Cells added here stayed in the saved lesson: a rerun's Run All drove the robot on.)"""
     run_cell(page, "world = lesson.world()")
-    drive = lambda: add_cell(page, "%ros2 param set /param_vel_node velocity 0.2")  # noqa: E731
+    drive = lambda: run_cell(page, "param set /param_vel_node velocity 0.2")  # noqa: E731
     change = drive_and_watch(page, artifacts, drive)
-    add_cell(page, "%ros2 param set /param_vel_node velocity 0.0")
+    run_cell(page, "param set /param_vel_node velocity 0.0")
     return change
 
 

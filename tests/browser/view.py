@@ -25,7 +25,9 @@ MOVED = 0.002  # share of the view's pixels that change when the robot drives fo
 def shot(page, folder: Path, name: str, view: str = VIEW) -> tuple[bytes, Path]:  # type: ignore[no-untyped-def]
     """Screenshot the (first visible) 3D view; return the PNG and where it was kept."""
     path = folder / f"{name}.png"
-    png = page.locator(view).first.screenshot(path=str(path))
+    # the view must hold still in the page first: with the load average at 15 (ci76), 20 s
+    # passed while the outputs around it still grew
+    png = page.locator(view).first.screenshot(path=str(path), timeout=60_000)
     return png, path
 
 
