@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from unix_accounts import new_home
+from waits import POLL_MS
 
 from course_lib.core.paths import REPO_ROOT
 from course_lib.core.ports import free_port
@@ -210,7 +211,7 @@ def stop_own_server(page: Any, hub_url: str) -> None:
     for _ in range(30):
         page.locator("#stop").click()
         try:
-            page.wait_for_function(_STOP_TAKEN, timeout=2_000)
+            page.wait_for_function(_STOP_TAKEN, timeout=2_000, polling=POLL_MS)
             return
         except PlaywrightTimeout:
             continue  # not bound yet: press again

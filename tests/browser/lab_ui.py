@@ -13,6 +13,7 @@ from typing import Any
 
 from playwright.sync_api import Error as PlaywrightError
 from playwright.sync_api import TimeoutError as PlaywrightTimeout
+from waits import POLL_MS
 
 __all__ = [
     "Cell",
@@ -172,6 +173,7 @@ class LabPage:
                     "(shown) => document.querySelectorAll('.jp-Dialog').length < shown",
                     arg=shown,
                     timeout=10_000,
+                    polling=POLL_MS,
                 )
         return texts
 
@@ -206,6 +208,7 @@ class LabPage:
             }""",
             arg=name,
             timeout=_ACTION_TIMEOUT_MS,
+            polling=POLL_MS,
         )
 
     def _wait_kernel(self, status: str, doing: str) -> None:
@@ -221,6 +224,7 @@ class LabPage:
                 }""",
                 arg=[status],
                 timeout=_ACTION_TIMEOUT_MS,
+                polling=POLL_MS,
             )
         except PlaywrightTimeout:
             raise AssertionError(
@@ -238,7 +242,9 @@ class LabPage:
         from playwright.sync_api import TimeoutError as PlaywrightTimeout
 
         try:
-            self.page.wait_for_function(_SETTLED, arg=one_cell, timeout=self.timeout_ms)
+            self.page.wait_for_function(
+                _SETTLED, arg=one_cell, timeout=self.timeout_ms, polling=POLL_MS
+            )
         except PlaywrightTimeout:
             raise AssertionError(
                 f"{doing} still runs after {self.timeout_ms / 1000:g} s: {self.kernel_status()!r}"

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from waits import POLL_MS
+
 _BUSY_PROMPTS = (
     "() => ![...document.querySelectorAll('.jp-InputPrompt')]"
     ".some(p => p.textContent.includes('*'))"
@@ -34,7 +36,8 @@ def run_all_cells(page) -> None:  # type: ignore[no-untyped-def]
     page.get_by_role("menuitem", name="Run", exact=True).click()
     page.get_by_role("menuitem", name="Run All Cells", exact=True).click()
     fail_on_dialog(page, "Run > Run All Cells")
-    page.wait_for_function(_STARTED, timeout=30_000)  # a cell is queued, running or done
+    # a cell is queued, running or done
+    page.wait_for_function(_STARTED, timeout=30_000, polling=POLL_MS)
 
 
 def fail_on_dialog(page, after: str) -> None:  # type: ignore[no-untyped-def]
@@ -46,7 +49,7 @@ def fail_on_dialog(page, after: str) -> None:  # type: ignore[no-untyped-def]
 
 def wait_all_ran(page, artifacts: Path) -> None:  # type: ignore[no-untyped-def]
     """Wait until no cell runs, keep a full-page screenshot, and fail if a cell failed."""
-    page.wait_for_function(_BUSY_PROMPTS, timeout=90_000)
+    page.wait_for_function(_BUSY_PROMPTS, timeout=90_000, polling=POLL_MS)
     page.screenshot(path=str(artifacts / "page_done.png"), full_page=True)
     fail_on_dialog(page, "Run All")
     errors = page.locator('[data-mime-type="application/vnd.jupyter.error"]')
@@ -84,7 +87,7 @@ def run_cell(page, source: str) -> None:  # type: ignore[no-untyped-def]
     cell = page.locator(".jp-CodeCell", has_text=source).first
     cell.locator(".jp-InputArea-editor").click()
     page.keyboard.press("Shift+Enter")
-    page.wait_for_function(_BUSY_PROMPTS, timeout=60_000)
+    page.wait_for_function(_BUSY_PROMPTS, timeout=60_000, polling=POLL_MS)
 
 
 def open_notebook(page, base_url: str, path: str, token: str) -> None:  # type: ignore[no-untyped-def]
@@ -123,7 +126,7 @@ def add_cell(page, code: str) -> str:  # type: ignore[no-untyped-def]
     page.keyboard.press("Enter")
     page.keyboard.type(code)
     page.keyboard.press("Shift+Enter")
-    page.wait_for_function(_BUSY_PROMPTS, timeout=60_000)
+    page.wait_for_function(_BUSY_PROMPTS, timeout=60_000, polling=POLL_MS)
     return cells.nth(count).locator(".jp-OutputArea").inner_text()
 
 

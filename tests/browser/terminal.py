@@ -5,6 +5,8 @@ from __future__ import annotations
 import re
 from typing import Any
 
+from waits import POLL_MS
+
 __all__ = ["Terminal"]
 
 # Without a token (a hub's server signs in with a cookie) the request carries the XSRF header.
@@ -69,6 +71,7 @@ class Terminal:
                 " window.__terms[name].out.slice(start).includes(expect)",
                 arg=[self.name, start, expect],
                 timeout=timeout * 1000,
+                polling=POLL_MS,
             )
         except PlaywrightTimeout:
             raise AssertionError(
@@ -93,6 +96,7 @@ class Terminal:
                 r"([name, start]) => /==end \d+\r?\n/.test(window.__terms[name].out.slice(start))",
                 arg=[self.name, start],
                 timeout=timeout * 1000,
+                polling=POLL_MS,
             )
         except PlaywrightTimeout:
             raise AssertionError(

@@ -12,6 +12,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from waits import POLL_MS
 
 pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 
@@ -35,13 +36,13 @@ def test_a_view_in_a_background_tab_is_sent_nothing(lab_page, artifacts: Path) -
     ui.add_cell("%ros2 param set /param_vel_node velocity 0.2")  # the robot drives on
     view = _viewer(ui.page)
     view.locator("#meshcat-pane").scroll_into_view_if_needed()
-    view.wait_for_function(SHOWN, timeout=10_000)
+    view.wait_for_function(SHOWN, timeout=10_000, polling=POLL_MS)
 
     ui.show(LESSONS[1])  # lesson 7's tab in the background: its view is hidden
-    view.wait_for_function("() => !shown", timeout=10_000)
+    view.wait_for_function("() => !shown", timeout=10_000, polling=POLL_MS)
     ui.page.wait_for_timeout(3000)
 
     ui.show(LESSONS[0])
-    view.wait_for_function(SHOWN, timeout=10_000)
+    view.wait_for_function(SHOWN, timeout=10_000, polling=POLL_MS)
     ui.add_cell("%ros2 param set /param_vel_node velocity 0.0")
     ui.screenshot(artifacts / "view_back.png")

@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 from notebook_ui import run_all_cells, wait_all_ran
 from terminal import Terminal
+from waits import POLL_MS
 
 pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 
@@ -48,6 +49,7 @@ def _wait_logged(page, command: str, timeout: float = 20_000) -> None:  # type: 
             "([el, text]) => el.innerText.includes(text)",
             arg=[log.element_handle(), f"$ {command}\n{SET_OK}"],
             timeout=timeout,
+            polling=POLL_MS,
         )
     except PlaywrightTimeout:
         raise AssertionError(
@@ -91,6 +93,7 @@ def test_lesson11_panel_slider_sets_the_node(page, lab, artifacts: Path) -> None
             "([el, before]) => el.innerText.trim() !== before",
             arg=[velocity.locator(".widget-readout").element_handle(), f"{before:.2f}"],
             timeout=10_000,
+            polling=POLL_MS,
         )
         shown = _readout(velocity)
         page.screenshot(path=str(artifacts / "slider_dragged.png"))
@@ -99,7 +102,9 @@ def test_lesson11_panel_slider_sets_the_node(page, lab, artifacts: Path) -> None
 
         terminal.run(f"ros2 param get {NODE} velocity", "Double value is:")
         page.wait_for_function(  # the whole line, up to its end
-            r"() => /Double value is: \S+\r?\n/.test(window.__term.out)", timeout=5_000
+            r"() => /Double value is: \S+\r?\n/.test(window.__term.out)",
+            timeout=5_000,
+            polling=POLL_MS,
         )
         got = terminal.output
         value = re.search(r"Double value is: (\S+)\r?\n", got)

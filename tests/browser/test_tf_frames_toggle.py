@@ -9,6 +9,7 @@ from typing import Any
 
 import mujoco
 import pytest
+from waits import POLL_MS
 
 from course_lib.sim.view.live import LiveView
 from course_lib.sim.world.model import build_model
@@ -62,6 +63,7 @@ def test_tf_frames_start_hidden_and_the_box_shows_them(browser: Any, view: str) 
         page.wait_for_function(
             f"window.viewer && viewer.scene_tree.find({SCAN}).object.type === 'LineSegments'",
             timeout=20_000,
+            polling=POLL_MS,
         )
         box = page.locator("#tf-frames")
         assert page.locator("#tf-toggle").inner_text().strip() == "TF frames"

@@ -20,6 +20,7 @@ from ros2_golden import console_env, run_console
 from course_lib.core.waiting import wait_until
 from course_lib.ros2 import start_daemon
 from course_lib.ros2.api import nodes_and_params as api
+from course_lib.ros2.node.client import SERVICE_WAIT_S
 from course_lib.ros2.node.connect import daemon_socket
 from course_lib.ros2.node.discovery import GHOST_GRACE_S
 from course_lib.session.session import Session, get_session
@@ -61,7 +62,10 @@ def test_a_ghost_is_neither_listed_nor_found(lab: Session) -> None:
     took = time.monotonic() - started
     assert (out.stdout, out.exit_code) == ("", 1), out
     assert out.stderr.startswith("Node not found"), out
-    assert took < 2.0, f"'Node not found' after {took:.1f} s"
+    # The defect this guards against waited SERVICE_WAIT_S for the ghost's services. The answer
+    # takes 0.9 s on a quiet machine (the helper's own participant leaves the graph first) and
+    # took 2.1 s once on 2 busy cores (ci77), against the 2.0 s this bound was.
+    assert took < SERVICE_WAIT_S - 1.0, f"'Node not found' after {took:.1f} s"
 
     stdout, _err, code = run_console(console_env(lab), "ros2 node list")
     assert code == 0 and "/param_vel_node" not in stdout, stdout
