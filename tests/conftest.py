@@ -4,13 +4,16 @@ from __future__ import annotations
 
 import gc
 import os
+import shutil
 import signal
 import sys
 import threading
+import time
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from cpu_by_test import CpuMeter, read_records, record, summary
 from file_order import file_of, longest_first, read_seconds, write_seconds
 
 from course_lib.core.paths import REPO_ROOT
@@ -32,6 +35,38 @@ _RERUN_TAIL = 40  # lines of each rerun's failure shown at the end of the run
 # unlinked the file as it started, and the reason for ci54's one rerun was lost.
 _RERUNS_KEPT_ENV = "COURSE_RERUNS_KEPT"
 _keeps_reruns = False
+# Each test's CPU, with every process it started (tests/support/cpu_by_test.py), summed by file
+# at the end of the run. The variable holds the pid of the run that owns the figures.
+CPU_FOLDER = REPO_ROOT / "test-artifacts" / "cpu"
+_CPU_OWNER_ENV = "COURSE_CPU_BY_TEST"
+_meter: CpuMeter | None = None
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """Measure this process's tests: an xdist worker's, or a run's of its own (whose figures
+    it starts afresh); a pytest run that a test starts is counted in that test."""
+    global _meter
+    if not hasattr(config, "workerinput"):
+        if os.environ.get(_CPU_OWNER_ENV):
+            return
+        os.environ[_CPU_OWNER_ENV] = str(os.getpid())  # before xdist starts its workers
+        shutil.rmtree(CPU_FOLDER, ignore_errors=True)
+    _meter = CpuMeter()
+
+
+def pytest_unconfigure() -> None:
+    if _meter is not None:
+        _meter.close()
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_protocol(item: pytest.Item) -> Iterator[None]:
+    if _meter is None or _meter.folder is None:
+        yield
+        return
+    cpu, wall = _meter.seconds(), time.monotonic()
+    yield
+    record(CPU_FOLDER, item.nodeid, _meter.seconds() - cpu, time.monotonic() - wall)
 
 
 @pytest.hookimpl(tryfirst=True)  # before xdist starts its workers, which inherit the variable
@@ -81,6 +116,7 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
     if "PYTEST_XDIST_WORKER" in os.environ:
         return
     _report_teardowns_cut_short(terminalreporter)
+    _report_cpu(terminalreporter)
     if not _keeps_reruns or not RERUNS_FILE.exists():
         return
     terminalreporter.section("why tests were rerun (the end of each failure)")
@@ -89,6 +125,16 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
         terminalreporter.write_line("===== " + lines[0])
         for line in lines[1:][-_RERUN_TAIL:]:
             terminalreporter.write_line(line)
+
+
+def _report_cpu(terminalreporter: pytest.TerminalReporter) -> None:
+    """Print the files whose tests used the most CPU, with every process they started."""
+    if _meter is None or os.environ.get(_CPU_OWNER_ENV) != str(os.getpid()):
+        return
+    terminalreporter.section("CPU by test file (each test with every process it started)")
+    lines = summary(read_records(CPU_FOLDER)) if CPU_FOLDER.is_dir() else []
+    for line in lines or [f"not measured: {_meter.problem or 'no test ran'}"]:
+        terminalreporter.write_line(line)
 
 
 def _report_teardowns_cut_short(terminalreporter: pytest.TerminalReporter) -> None:

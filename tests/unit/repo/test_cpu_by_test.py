@@ -1,0 +1,88 @@
+"""The suite's CPU by test (tests/support/cpu_by_test.py): what it counts and how it sums."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from cpu_by_test import CpuMeter, read_records, record, summary
+
+SUPPORT = Path(__file__).resolve().parents[2] / "support"
+
+# A process whose child burns 0.5 s of CPU after its parent has gone (re-parented, as a lab's
+# simulation or a browser's renderer can be): getrusage never counts it, the cgroup does.
+_ORPHAN_BURNS = """
+import os, resource, sys, time
+from cpu_by_test import CpuMeter
+meter = CpuMeter()
+if meter.folder is None:
+    print("skip", meter.problem); sys.exit(0)
+before, children = meter.seconds(), resource.getrusage(resource.RUSAGE_CHILDREN)
+read, write = os.pipe()
+if os.fork() == 0:
+    if os.fork() == 0:
+        os.close(read)
+        end = time.process_time() + 0.5
+        while time.process_time() < end:
+            pass
+        os._exit(0)  # its end closes the pipe's last writer
+    os._exit(0)
+os.close(write)
+os.wait()
+os.read(read, 1)  # returns once the grandchild has exited
+time.sleep(0.05)
+after = resource.getrusage(resource.RUSAGE_CHILDREN)
+print("cgroup", meter.seconds() - before)
+print("rusage", after.ru_utime + after.ru_stime - children.ru_utime - children.ru_stime)
+meter.close()
+"""
+
+
+def test_a_re_parented_childs_cpu_is_counted() -> None:
+    out = subprocess.run(
+        [sys.executable, "-c", _ORPHAN_BURNS],
+        env={"PYTHONPATH": str(SUPPORT), "PATH": "/usr/bin:/bin"},
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=True,
+    ).stdout
+    if out.startswith("skip"):
+        pytest.skip(f"no cgroup to measure in: {out}")
+    figures = dict(line.split() for line in out.splitlines())
+    assert float(figures["cgroup"]) >= 0.45, out
+    assert float(figures["rusage"]) < 0.1, out  # what getrusage would have said
+
+
+def test_the_summary_ranks_files_and_shares_folders(tmp_path: Path) -> None:
+    record(tmp_path, "tests/browser/test_walk.py::test_a", 30.0, 60.0)
+    record(tmp_path, "tests/unit/core/test_x.py::test_b", 1.0, 2.0)
+    record(tmp_path, "tests/browser/test_walk.py::test_c", 9.0, 20.0)
+    record(tmp_path, "notebooks/01_setup_check.ipynb::Cell 0", 10.0, 5.0)
+    (tmp_path / "torn.jsonl").write_text('{"test": "tests/x.py::t", "cpu_s": 1')
+
+    lines = summary(read_records(tmp_path), top=2)
+
+    assert lines == [
+        "   CPU-s   wall-s  file",
+        "    39.0     80.0  tests/browser/test_walk.py",
+        "    10.0      5.0  notebooks/01_setup_check.ipynb",
+        "    50.0 CPU-s in all (3 files): tests/browser 78%, notebooks 20%, tests/unit 2%",
+    ]
+
+
+def test_no_figures_make_no_table() -> None:
+    assert summary([]) == []
+
+
+def test_a_meter_that_cannot_measure_reads_zero_and_says_why(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    import cpu_by_test
+
+    monkeypatch.setattr(cpu_by_test, "_own_cgroups", lambda: [])
+    meter = CpuMeter()
+    assert (meter.folder, meter.seconds()) == (None, 0.0)
+    assert meter.problem == "no cgroup filesystem here"
