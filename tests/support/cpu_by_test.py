@@ -92,9 +92,14 @@ class CpuMeter:
 
 
 def _remove_empty_leftovers(parent: Path) -> None:
+    """Remove the cgroups that earlier runs left in `parent` once their processes are gone,
+    innermost first: a run's workers' cgroups sit inside its controller's, and a worker's
+    still holds the processes its tests started when the worker ends."""
     for old in parent.glob(f"{_PREFIX}*"):
-        with contextlib.suppress(OSError):  # only an empty cgroup goes: a busy one stays
-            old.rmdir()
+        if old.is_dir():
+            _remove_empty_leftovers(old)
+            with contextlib.suppress(OSError):  # only an empty cgroup goes: a busy one stays
+                old.rmdir()
 
 
 def record(folder: Path, nodeid: str, cpu_s: float, wall_s: float) -> None:

@@ -89,3 +89,22 @@ def test_a_meter_that_cannot_measure_reads_zero_and_says_why(
     meter = CpuMeter()
     assert (meter.folder, meter.seconds()) == (None, 0.0)
     assert meter.problem == "no cgroup filesystem here"
+
+
+def test_leftovers_of_earlier_runs_go_innermost_first_and_busy_ones_stay(tmp_path: Path) -> None:
+    import cpu_by_test
+
+    (tmp_path / "course-tests-1" / "course-tests-2").mkdir(parents=True)  # a run's, empty
+    (tmp_path / "course-tests-3" / "course-tests-4").mkdir(parents=True)
+    (tmp_path / "course-tests-3" / "course-tests-4" / "busy").touch()  # a process still in it
+    (tmp_path / "someone-elses").mkdir()
+
+    cpu_by_test._remove_empty_leftovers(tmp_path)
+
+    left = sorted(str(p.relative_to(tmp_path)) for p in tmp_path.rglob("*"))
+    assert left == [
+        "course-tests-3",
+        "course-tests-3/course-tests-4",
+        "course-tests-3/course-tests-4/busy",
+        "someone-elses",
+    ]
