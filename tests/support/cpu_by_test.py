@@ -19,6 +19,8 @@ import os
 from collections.abc import Iterable
 from pathlib import Path
 
+from file_order import file_of
+
 __all__ = ["CpuMeter", "read_records", "record", "summary"]
 
 _V1 = Path("/sys/fs/cgroup/cpuacct")
@@ -128,7 +130,7 @@ def summary(records: Iterable[dict[str, object]], top: int = 12) -> list[str]:
     by_file: dict[str, list[float]] = {}
     by_folder: dict[str, float] = {}
     for row in records:
-        name = str(row["test"]).split("::", 1)[0]
+        name = file_of(str(row["test"]))
         cpu, wall = float(row["cpu_s"]), float(row["wall_s"])  # type: ignore[arg-type]
         figures = by_file.setdefault(name, [0.0, 0.0])
         figures[0] += cpu
