@@ -108,6 +108,9 @@ def pytest_runtest_logreport(report: pytest.TestReport) -> None:
 
 
 def pytest_sessionfinish(session: pytest.Session) -> None:
+    if _meter is not None:  # what this process counted apart from its tests, as it stands
+        for name, cpu, wall in _meter.apart():
+            record(CPU_FOLDER, name, cpu, wall)
     if _SECONDS_OUT and "PYTEST_XDIST_WORKER" not in os.environ and _file_seconds:
         write_seconds(_file_seconds, Path(_SECONDS_OUT))
 

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 from browser_path import INSTALL_HINT, find_chromium
+from cpu_by_test import count_apart
 from lab_server import ARTIFACTS, LabServer
 
 CHROMIUM = find_chromium()
@@ -36,7 +37,10 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
         if hub_test and os.geteuid() == 0 and not _PREBUILD:
             from class_hub import start_prebuild
 
-            _PREBUILD.append(start_prebuild())
+            build = start_prebuild()
+            _PREBUILD.append(build)
+            # no test's CPU: the CPU table names it, instead of charging this worker's first test
+            count_apart(build.pid, "tests/browser/class_hub.py::the learners' environment build")
         return
     skip = pytest.mark.skip(reason=INSTALL_HINT)
     for item in items:

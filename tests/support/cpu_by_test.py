@@ -8,7 +8,8 @@ and after a test is what that test cost. Where no cgroup can be made (not root, 
 nothing is measured and the summary says why.
 
 Each test's figure is a line of `test-artifacts/cpu/<pid>.jsonl`; the run's controller sums
-them by file at the end (`summary`).
+them by file at the end (`summary`). Work that is no test's, such as a build started at
+collection, is counted apart (`count_apart`), under a name of its own.
 """
 
 from __future__ import annotations
@@ -16,16 +17,18 @@ from __future__ import annotations
 import contextlib
 import json
 import os
+import time
 from collections.abc import Iterable
 from pathlib import Path
 
 from file_order import file_of
 
-__all__ = ["CpuMeter", "read_records", "record", "summary"]
+__all__ = ["CpuMeter", "count_apart", "read_records", "record", "summary"]
 
 _V1 = Path("/sys/fs/cgroup/cpuacct")
 _UNIFIED = (Path("/sys/fs/cgroup"), Path("/sys/fs/cgroup/unified"))
 _PREFIX = "course-tests-"
+_counting: CpuMeter | None = None  # this process's meter, once it measures
 
 
 def _own_cgroups() -> list[tuple[Path, str]]:
@@ -54,9 +57,11 @@ class CpuMeter:
     """Move this process into a cgroup of its own and read the CPU it and its children used."""
 
     def __init__(self) -> None:
+        global _counting
         self.folder: Path | None = None
         self.problem = ""
         self._usage_file = ""
+        self._apart: list[tuple[str, Path, float]] = []  # (name, cgroup, since)
         for parent, usage in _own_cgroups():
             if not (parent / "cgroup.procs").exists():
                 continue
@@ -69,28 +74,63 @@ class CpuMeter:
                 self.problem = f"cannot use a cgroup in {parent}: {error}"
                 continue
             self.folder, self._usage_file, self.problem = folder, usage, ""
+            _counting = self
             return
         self.problem = self.problem or "no cgroup filesystem here"
 
     def seconds(self) -> float:
         """Return the CPU seconds this cgroup has used so far (0.0 when not measuring)."""
-        if self.folder is None:
-            return 0.0
-        text = (self.folder / self._usage_file).read_text()
+        return 0.0 if self.folder is None else self._usage(self.folder)
+
+    def _usage(self, folder: Path) -> float:
+        text = (folder / self._usage_file).read_text()
         if self._usage_file == "cpuacct.usage":
             return int(text) / 1e9
         fields = dict(line.split() for line in text.splitlines())
         return int(fields["usage_usec"]) / 1e6
 
+    def count_apart(self, pid: int, name: str) -> None:
+        """Count process `pid`, and whatever it starts from now on, as `name` in a cgroup
+        beside this one, so that no test is charged with it; where that cannot be done, it
+        stays counted in the test that runs meanwhile."""
+        if self.folder is None:
+            return
+        folder = self.folder.parent / f"{_PREFIX}{pid}"
+        try:
+            folder.mkdir(exist_ok=True)
+            (folder / "cgroup.procs").write_text(str(pid))
+        except OSError:
+            return
+        self._apart.append((name, folder, time.monotonic()))
+
+    def apart(self) -> list[tuple[str, float, float]]:
+        """Return the name, CPU seconds and wall seconds so far of what is counted apart."""
+        now = time.monotonic()
+        return [(name, self._usage(folder), now - since) for name, folder, since in self._apart]
+
     def close(self) -> None:
-        """Move this process back to the parent cgroup; remove this one once nothing is in it
-        (a process left running keeps it, and the next run removes it when empty)."""
+        """Move this process back to the parent cgroup; remove this one and those counted
+        apart once nothing is in them (a process left running keeps its cgroup, and the next
+        run removes it when empty)."""
+        global _counting
         if self.folder is None:
             return
         with contextlib.suppress(OSError):
             (self.folder.parent / "cgroup.procs").write_text(str(os.getpid()))
             self.folder.rmdir()
-        self.folder = None
+        for _name, folder, _since in self._apart:
+            with contextlib.suppress(OSError):
+                folder.rmdir()
+        self.folder, self._apart = None, []
+        if _counting is self:
+            _counting = None
+
+
+def count_apart(pid: int, name: str) -> None:
+    """Count process `pid` under `name` (a test id's form, `file::what`) instead of in the
+    tests of this process; nothing happens where nothing is measured."""
+    if _counting is not None:
+        _counting.count_apart(pid, name)
 
 
 def _remove_empty_leftovers(parent: Path) -> None:

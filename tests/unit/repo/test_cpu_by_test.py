@@ -59,6 +59,48 @@ def test_a_re_parented_childs_cpu_is_counted(usage: str) -> None:
     assert float(figures["rusage"]) < 0.1, out  # what getrusage would have said
 
 
+# A child that burns 0.5 s of CPU once told to, counted apart from the tests: the test process's
+# own figure leaves it out, the named one holds it, and closing removes its cgroup.
+_APART_BURNS = """
+import subprocess, sys
+import cpu_by_test
+kind = [pair for pair in cpu_by_test._own_cgroups() if pair[1] == sys.argv[1]]
+cpu_by_test._own_cgroups = lambda: kind
+meter = cpu_by_test.CpuMeter()
+if meter.folder is None:
+    print("skip", meter.problem); sys.exit(0)
+burn = "import sys, time\\nsys.stdin.readline()\\nend = time.process_time() + 0.5\\n"
+burn += "while time.process_time() < end:\\n    pass"
+before = meter.seconds()
+child = subprocess.Popen([sys.executable, "-c", burn], stdin=subprocess.PIPE)
+cpu_by_test.count_apart(child.pid, "tests/browser/class_hub.py::a build")
+child.communicate(b"go\\n")
+print("tests", meter.seconds() - before)
+print("apart", sum(cpu for name, cpu, _wall in meter.apart() if name.endswith("a build")))
+folder = meter.folder.parent / f"course-tests-{child.pid}"
+meter.close()
+print("left", int(folder.exists()))
+"""
+
+
+@pytest.mark.parametrize("usage", ["cpuacct.usage", "cpu.stat"], ids=["cgroup-v1", "cgroup-v2"])
+def test_a_process_counted_apart_is_no_tests(usage: str) -> None:
+    out = subprocess.run(
+        [sys.executable, "-c", _APART_BURNS, usage],
+        env={"PYTHONPATH": str(SUPPORT), "PATH": "/usr/bin:/bin"},
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=True,
+    ).stdout
+    if out.startswith("skip"):
+        pytest.skip(f"no cgroup to measure in: {out}")
+    figures = dict(line.split() for line in out.splitlines())
+    assert float(figures["apart"]) >= 0.45, out
+    assert float(figures["tests"]) < 0.2, out  # without count_apart: the burn's 0.5 s
+    assert figures["left"] == "0", out
+
+
 def test_the_summary_ranks_files_and_shares_folders(tmp_path: Path) -> None:
     record(tmp_path, "tests/browser/test_walk.py::test_a", 30.0, 60.0)
     record(tmp_path, "tests/unit/core/test_x.py::test_b", 1.0, 2.0)
