@@ -9,6 +9,7 @@ CMAKE_PREFIX_PATH), like /opt/ros/jazzy on a ROS machine.
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 import sysconfig
@@ -17,11 +18,13 @@ from pathlib import Path
 
 from ..core.paths import PACKAGE_DIR, REPO_ROOT, ROSJECT_DIR, prepend, venv_bin_dir
 
-__all__ = ["BUILD_STAMP", "build_env", "build_workspace", "cmake_args"]
+__all__ = ["BUILD_STAMP", "build_env", "build_workspace", "cmake_args", "make_flags"]
 
 BUILD_STAMP = ROSJECT_DIR / "install" / ".built"
 CHECK_PLATFORM = REPO_ROOT / "scripts" / "check_platform.py"  # also names a missing compiler
 WHEEL_FIXUPS = PACKAGE_DIR / "cmake" / "wheel_fixups.cmake"
+# What in MAKEFLAGS already says how many jobs make runs (colcon then adds nothing of its own)
+_JOBS_FLAG = re.compile(r"(?:^|\s)-[jl]|--jobs|--load-average|--jobserver")
 
 
 def build_env(base: Mapping[str, str] | None = None) -> dict[str, str]:
@@ -31,9 +34,22 @@ def build_env(base: Mapping[str, str] | None = None) -> dict[str, str]:
     for variable in ("AMENT_PREFIX_PATH", "CMAKE_PREFIX_PATH"):
         env[variable] = prepend(prefix, env.get(variable))
     env["PATH"] = prepend(str(venv_bin_dir()), env.get("PATH"))  # the pinned cmake
-    # colcon's default adds `-l<cores>`, which compiles one file at a time on a busy machine.
-    env.setdefault("MAKEFLAGS", f"-j{os.cpu_count() or 1}")
+    env["MAKEFLAGS"] = make_flags(env.get("MAKEFLAGS", ""))
     return env
+
+
+def make_flags(inherited: str) -> str:
+    """Return MAKEFLAGS for the workspace's builds: `inherited` with one job per core added
+    unless it sets the jobs already (pure).
+
+    colcon adds `-j<cores> -l<cores>` when MAKEFLAGS sets no jobs, and the load limit compiles
+    one file at a time on a busy machine (the class hub's environment, built while the tests
+    run). `make setup` always hands its recipes a MAKEFLAGS, empty or " --no-print-directory",
+    so the variable is extended, not only set where missing.
+    """
+    if _JOBS_FLAG.search(inherited):
+        return inherited
+    return f"{inherited} -j{os.cpu_count() or 1}".strip()
 
 
 def python_include_dirs() -> list[str]:
