@@ -19,6 +19,7 @@ import json
 import os
 import time
 from collections.abc import Iterable
+from dataclasses import dataclass
 from pathlib import Path
 
 from file_order import file_of
@@ -29,6 +30,16 @@ _V1 = Path("/sys/fs/cgroup/cpuacct")
 _UNIFIED = (Path("/sys/fs/cgroup"), Path("/sys/fs/cgroup/unified"))
 _PREFIX = "course-tests-"
 _counting: CpuMeter | None = None  # this process's meter, once it measures
+
+
+@dataclass
+class _Apart:
+    """A process counted apart from the tests, in a cgroup of its own."""
+
+    name: str
+    folder: Path
+    since: float
+    ended: float | None = None  # when its cgroup was first seen empty
 
 
 def _own_cgroups() -> list[tuple[Path, str]]:
@@ -61,7 +72,7 @@ class CpuMeter:
         self.folder: Path | None = None
         self.problem = ""
         self._usage_file = ""
-        self._apart: list[tuple[str, Path, float]] = []  # (name, cgroup, since)
+        self._apart: list[_Apart] = []
         for parent, usage in _own_cgroups():
             if not (parent / "cgroup.procs").exists():
                 continue
@@ -101,12 +112,26 @@ class CpuMeter:
             (folder / "cgroup.procs").write_text(str(pid))
         except OSError:
             return
-        self._apart.append((name, folder, time.monotonic()))
+        self._apart.append(_Apart(name, folder, time.monotonic()))
+
+    def notice_ended(self) -> None:
+        """Note the time at which what is counted apart has ended (its cgroup empty); called
+        between tests, so a wall time is known to within a test."""
+        for entry in self._apart:
+            if entry.ended is None:
+                with contextlib.suppress(OSError):
+                    if not (entry.folder / "cgroup.procs").read_text().strip():
+                        entry.ended = time.monotonic()
 
     def apart(self) -> list[tuple[str, float, float]]:
-        """Return the name, CPU seconds and wall seconds so far of what is counted apart."""
+        """Return the name, CPU seconds and wall seconds (until it ended, or so far) of what
+        is counted apart."""
+        self.notice_ended()
         now = time.monotonic()
-        return [(name, self._usage(folder), now - since) for name, folder, since in self._apart]
+        return [
+            (entry.name, self._usage(entry.folder), (entry.ended or now) - entry.since)
+            for entry in self._apart
+        ]
 
     def close(self) -> None:
         """Move this process back to the parent cgroup; remove this one and those counted
@@ -118,9 +143,9 @@ class CpuMeter:
         with contextlib.suppress(OSError):
             (self.folder.parent / "cgroup.procs").write_text(str(os.getpid()))
             self.folder.rmdir()
-        for _name, folder, _since in self._apart:
+        for entry in self._apart:
             with contextlib.suppress(OSError):
-                folder.rmdir()
+                entry.folder.rmdir()
         self.folder, self._apart = None, []
         if _counting is self:
             _counting = None

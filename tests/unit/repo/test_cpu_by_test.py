@@ -60,9 +60,10 @@ def test_a_re_parented_childs_cpu_is_counted(usage: str) -> None:
 
 
 # A child that burns 0.5 s of CPU once told to, counted apart from the tests: the test process's
-# own figure leaves it out, the named one holds it, and closing removes its cgroup.
+# own figure leaves it out, the named one holds it with the wall time until it ended, and
+# closing removes its cgroup.
 _APART_BURNS = """
-import subprocess, sys
+import subprocess, sys, time
 import cpu_by_test
 kind = [pair for pair in cpu_by_test._own_cgroups() if pair[1] == sys.argv[1]]
 cpu_by_test._own_cgroups = lambda: kind
@@ -74,9 +75,14 @@ burn += "while time.process_time() < end:\\n    pass"
 before = meter.seconds()
 child = subprocess.Popen([sys.executable, "-c", burn], stdin=subprocess.PIPE)
 cpu_by_test.count_apart(child.pid, "tests/browser/class_hub.py::a build")
+since = time.monotonic()
 child.communicate(b"go\\n")
+meter.notice_ended()  # as between two tests: the build has ended
+time.sleep(1.0)
 print("tests", meter.seconds() - before)
-print("apart", sum(cpu for name, cpu, _wall in meter.apart() if name.endswith("a build")))
+(name, cpu, wall), = meter.apart()
+print("apart", cpu if name.endswith("a build") else -1)
+print("after_end", time.monotonic() - since - wall)  # its wall time stops at its end
 folder = meter.folder.parent / f"course-tests-{child.pid}"
 meter.close()
 print("left", int(folder.exists()))
@@ -98,6 +104,7 @@ def test_a_process_counted_apart_is_no_tests(usage: str) -> None:
     figures = dict(line.split() for line in out.splitlines())
     assert float(figures["apart"]) >= 0.45, out
     assert float(figures["tests"]) < 0.2, out  # without count_apart: the burn's 0.5 s
+    assert float(figures["after_end"]) >= 0.9, out  # without the end noticed: about 0
     assert figures["left"] == "0", out
 
 
