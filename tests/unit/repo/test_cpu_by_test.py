@@ -11,16 +11,41 @@ from cpu_by_test import CpuMeter, read_records, record, summary
 
 SUPPORT = Path(__file__).resolve().parents[2] / "support"
 
-# A process whose child burns 0.5 s of CPU after its parent has gone (re-parented, as a lab's
-# simulation or a browser's renderer can be): getrusage never counts it, the cgroup does.
-_ORPHAN_BURNS = """
-import os, resource, sys, time
+# A meter in one kind of cgroup (the script's argument: its usage file), or "skip" if none
+_METER_OF_ONE_KIND = """
+import sys
 import cpu_by_test
 kind = [pair for pair in cpu_by_test._own_cgroups() if pair[1] == sys.argv[1]]
 cpu_by_test._own_cgroups = lambda: kind
 meter = cpu_by_test.CpuMeter()
 if meter.folder is None:
     print("skip", meter.problem); sys.exit(0)
+"""
+EACH_KIND = pytest.mark.parametrize(
+    "usage", ["cpuacct.usage", "cpu.stat"], ids=["cgroup-v1", "cgroup-v2"]
+)
+
+
+def _figures(script: str, usage: str) -> tuple[dict[str, str], str]:
+    """Run `script` after a meter of the `usage` kind is made; return the figures it printed
+    (name and value per line) and its output; skip where this host has no such cgroup."""
+    out = subprocess.run(
+        [sys.executable, "-c", _METER_OF_ONE_KIND + script, usage],
+        env={"PYTHONPATH": str(SUPPORT), "PATH": "/usr/bin:/bin"},
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=True,
+    ).stdout
+    if out.startswith("skip"):
+        pytest.skip(f"no cgroup to measure in: {out}")
+    return dict(line.split() for line in out.splitlines()), out
+
+
+# A process whose child burns 0.5 s of CPU after its parent has gone (re-parented, as a lab's
+# simulation or a browser's renderer can be): getrusage never counts it, the cgroup does.
+_ORPHAN_BURNS = """
+import os, resource, sys, time
 before, children = meter.seconds(), resource.getrusage(resource.RUSAGE_CHILDREN)
 read, write = os.pipe()
 if os.fork() == 0:
@@ -42,19 +67,9 @@ meter.close()
 """
 
 
-@pytest.mark.parametrize("usage", ["cpuacct.usage", "cpu.stat"], ids=["cgroup-v1", "cgroup-v2"])
+@EACH_KIND
 def test_a_re_parented_childs_cpu_is_counted(usage: str) -> None:
-    out = subprocess.run(
-        [sys.executable, "-c", _ORPHAN_BURNS, usage],
-        env={"PYTHONPATH": str(SUPPORT), "PATH": "/usr/bin:/bin"},
-        capture_output=True,
-        text=True,
-        timeout=60,
-        check=True,
-    ).stdout
-    if out.startswith("skip"):
-        pytest.skip(f"no cgroup to measure in: {out}")
-    figures = dict(line.split() for line in out.splitlines())
+    figures, out = _figures(_ORPHAN_BURNS, usage)
     assert float(figures["cgroup"]) >= 0.45, out
     assert float(figures["rusage"]) < 0.1, out  # what getrusage would have said
 
@@ -64,12 +79,6 @@ def test_a_re_parented_childs_cpu_is_counted(usage: str) -> None:
 # closing removes its cgroup.
 _APART_BURNS = """
 import subprocess, sys, time
-import cpu_by_test
-kind = [pair for pair in cpu_by_test._own_cgroups() if pair[1] == sys.argv[1]]
-cpu_by_test._own_cgroups = lambda: kind
-meter = cpu_by_test.CpuMeter()
-if meter.folder is None:
-    print("skip", meter.problem); sys.exit(0)
 burn = "import sys, time\\nsys.stdin.readline()\\nend = time.process_time() + 0.5\\n"
 burn += "while time.process_time() < end:\\n    pass"
 before = meter.seconds()
@@ -89,19 +98,9 @@ print("left", int(folder.exists()))
 """
 
 
-@pytest.mark.parametrize("usage", ["cpuacct.usage", "cpu.stat"], ids=["cgroup-v1", "cgroup-v2"])
+@EACH_KIND
 def test_a_process_counted_apart_is_no_tests(usage: str) -> None:
-    out = subprocess.run(
-        [sys.executable, "-c", _APART_BURNS, usage],
-        env={"PYTHONPATH": str(SUPPORT), "PATH": "/usr/bin:/bin"},
-        capture_output=True,
-        text=True,
-        timeout=60,
-        check=True,
-    ).stdout
-    if out.startswith("skip"):
-        pytest.skip(f"no cgroup to measure in: {out}")
-    figures = dict(line.split() for line in out.splitlines())
+    figures, out = _figures(_APART_BURNS, usage)
     assert float(figures["apart"]) >= 0.45, out
     assert float(figures["tests"]) < 0.2, out  # without count_apart: the burn's 0.5 s
     assert float(figures["after_end"]) >= 0.9, out  # without the end noticed: about 0
