@@ -67,7 +67,6 @@ def pytest_runtest_protocol(item: pytest.Item) -> Iterator[None]:
     cpu, wall = _meter.seconds(), time.monotonic()
     yield
     record(CPU_FOLDER, item.nodeid, _meter.seconds() - cpu, time.monotonic() - wall)
-    _meter.notice_ended()
 
 
 @pytest.hookimpl(tryfirst=True)  # before xdist starts its workers, which inherit the variable

@@ -34,7 +34,10 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     pip, that then overlap the other tests)."""
     if CHROMIUM is not None:
         hub_test = any(item.path.name == "test_class_hub.py" for item in items)
-        if hub_test and os.geteuid() == 0 and not _PREBUILD:
+        # every worker collects every test: the first worker alone builds (the others' builds
+        # only waited for its lock, about 2 CPU-s each)
+        first = os.environ.get("PYTEST_XDIST_WORKER", "gw0") == "gw0"
+        if hub_test and first and os.geteuid() == 0 and not _PREBUILD:
             from class_hub import start_prebuild
 
             build = start_prebuild()

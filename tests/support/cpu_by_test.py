@@ -17,6 +17,7 @@ from __future__ import annotations
 import contextlib
 import json
 import os
+import threading
 import time
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -40,6 +41,18 @@ class _Apart:
     folder: Path
     since: float
     ended: float | None = None  # when its cgroup was first seen empty
+
+    def watch(self, period_s: float = 1.0) -> None:
+        """Note when the cgroup empties, looking every `period_s` (run in a daemon thread)."""
+        while self.ended is None:
+            try:
+                empty = not (self.folder / "cgroup.procs").read_text().strip()
+            except OSError:  # removed: the meter was closed
+                return
+            if empty:
+                self.ended = time.monotonic()
+                return
+            time.sleep(period_s)
 
 
 def _own_cgroups() -> list[tuple[Path, str]]:
@@ -100,10 +113,11 @@ class CpuMeter:
         fields = dict(line.split() for line in text.splitlines())
         return int(fields["usage_usec"]) / 1e6
 
-    def count_apart(self, pid: int, name: str) -> None:
+    def count_apart(self, pid: int, name: str, *, watch_period_s: float = 1.0) -> None:
         """Count process `pid`, and whatever it starts from now on, as `name` in a cgroup
-        beside this one, so that no test is charged with it; where that cannot be done, it
-        stays counted in the test that runs meanwhile."""
+        beside this one, so that no test is charged with it (its end is looked for every
+        `watch_period_s`); where that cannot be done, it stays counted in the test that runs
+        meanwhile."""
         if self.folder is None:
             return
         folder = self.folder.parent / f"{_PREFIX}{pid}"
@@ -112,21 +126,16 @@ class CpuMeter:
             (folder / "cgroup.procs").write_text(str(pid))
         except OSError:
             return
-        self._apart.append(_Apart(name, folder, time.monotonic()))
-
-    def notice_ended(self) -> None:
-        """Note the time at which what is counted apart has ended (its cgroup empty); called
-        between tests, so a wall time is known to within a test."""
-        for entry in self._apart:
-            if entry.ended is None:
-                with contextlib.suppress(OSError):
-                    if not (entry.folder / "cgroup.procs").read_text().strip():
-                        entry.ended = time.monotonic()
+        entry = _Apart(name, folder, time.monotonic())
+        self._apart.append(entry)
+        watch = threading.Thread(
+            target=entry.watch, args=(watch_period_s,), name=f"cpu-apart-{pid}", daemon=True
+        )
+        watch.start()
 
     def apart(self) -> list[tuple[str, float, float]]:
-        """Return the name, CPU seconds and wall seconds (until it ended, or so far) of what
-        is counted apart."""
-        self.notice_ended()
+        """Return the name, CPU seconds and wall seconds (until it ended, to within a watch
+        period, or so far) of what is counted apart."""
         now = time.monotonic()
         return [
             (entry.name, self._usage(entry.folder), (entry.ended or now) - entry.since)
