@@ -135,12 +135,14 @@ class CpuMeter:
 
     def apart(self) -> list[tuple[str, float, float]]:
         """Return the name, CPU seconds and wall seconds (until it ended, to within a watch
-        period, or so far) of what is counted apart."""
-        now = time.monotonic()
-        return [
-            (entry.name, self._usage(entry.folder), (entry.ended or now) - entry.since)
-            for entry in self._apart
-        ]
+        period, or so far) of what is counted apart; a cgroup that is gone (another run's
+        clean-up took it once empty) is left out rather than failing the run's end."""
+        now, figures = time.monotonic(), []
+        for entry in self._apart:
+            with contextlib.suppress(OSError):
+                cpu = self._usage(entry.folder)
+                figures.append((entry.name, cpu, (entry.ended or now) - entry.since))
+        return figures
 
     def close(self) -> None:
         """Move this process back to the parent cgroup; remove this one and those counted

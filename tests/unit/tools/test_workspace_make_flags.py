@@ -29,7 +29,7 @@ def test_jobs_are_added_where_make_flags_set_none(inherited: str, expected: str)
 
 @pytest.mark.parametrize(
     "inherited",
-    [" -j4 --jobserver-auth=fifo:/tmp/GMfifo1", "-l3", "--jobs=3", " --load-average=2"],
+    [" -j4 --jobserver-auth=3,4", "-l3", "--jobs=3", " --load-average=2"],
 )
 def test_jobs_already_set_are_left_alone(inherited: str) -> None:
     assert make_flags(inherited) == inherited
