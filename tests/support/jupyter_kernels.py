@@ -54,7 +54,17 @@ class Kernel:
     def __init__(self, env: dict[str, str] | None = None) -> None:
         # its own stderr (not the worker's, which no report shows): said if it dies starting
         self._stderr = tempfile.TemporaryFile()  # noqa: SIM115 (closed by shutdown)
-        self.manager = KernelManager(kernel_name="python3")
+        # Unix sockets in a folder of its own: TCP ports are chosen free, released, and bound by
+        # the kernel moments later, and on a busy host another process took one in between
+        # (ci88: "Address already in use" as the kernel started).
+        self._sockets = tempfile.TemporaryDirectory(prefix="kernel-")
+        sockets = Path(self._sockets.name)
+        self.manager = KernelManager(
+            kernel_name="python3",
+            transport="ipc",
+            ip=str(sockets / "channel"),
+            connection_file=str(sockets / "connection.json"),
+        )
         self.manager.start_kernel(
             env=env or independent_env(), cwd=str(REPO_ROOT), stderr=self._stderr
         )
@@ -129,6 +139,7 @@ class Kernel:
         with suppress(Exception):
             self.manager.cleanup_resources()
         self._stderr.close()
+        self._sockets.cleanup()
 
 
 def course_pids(owner_pid: int) -> list[int]:

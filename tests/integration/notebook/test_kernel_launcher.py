@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 
+import psutil
 from jupyter_client.kernelspec import KernelSpecManager
 from jupyter_kernels import Kernel
 
@@ -35,3 +36,24 @@ def _check_kernel(kernel: Kernel) -> None:
         " os.getcwd() in sys.path or '' in sys.path, get_ipython().__class__.__name__]))"
     )
     assert json.loads(out.text) == [False, True, "ZMQInteractiveShell"]
+
+
+CHANNELS = ("shell_port", "iopub_port", "stdin_port", "control_port", "hb_port")
+
+
+def test_a_test_kernel_binds_its_channels_to_unix_sockets() -> None:
+    """ci88: a TCP port chosen free was taken by another process before the kernel bound it.
+
+    Unix sockets in a folder of the kernel's own cannot be taken in between.
+    """
+    kernel = Kernel()
+    try:
+        info = kernel.manager.get_connection_info()
+        expected = {f"{info['ip']}-{info[channel]}" for channel in CHANNELS}
+        bound = {
+            c.laddr for c in psutil.Process(kernel.pid).net_connections(kind="unix") if c.laddr
+        }
+        assert expected <= bound, (info, bound)
+        assert kernel.ok("print(6 * 7)").text == "42\n"
+    finally:
+        kernel.shutdown()
