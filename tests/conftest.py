@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 from cpu_by_test import CpuMeter, read_records, record, summary
 from file_order import file_of, longest_first, read_seconds, write_seconds
+from host_speed import host_speed_line
 
 from course_lib.core.paths import REPO_ROOT
 from course_lib.ros2.node.direct import TEARDOWN_DUMPS_ENV
@@ -138,6 +139,8 @@ def _report_cpu(terminalreporter: pytest.TerminalReporter) -> None:
     lines = summary(read_records(CPU_FOLDER)) if CPU_FOLDER.is_dir() else []
     for line in lines or [f"not measured: {_meter.problem or 'no test ran'}"]:
         terminalreporter.write_line(line)
+    if terminalreporter.config.getoption("numprocesses", None):  # a whole run (about 2 s)
+        terminalreporter.write_line(host_speed_line())
 
 
 def _report_teardowns_cut_short(terminalreporter: pytest.TerminalReporter) -> None:
