@@ -17,8 +17,10 @@ from typing import Any
 __all__ = ["ACK_POLL_S", "UNACKNOWLEDGED_LIMIT_S", "keep_until_acknowledged"]
 
 ACK_POLL_S = 0.02
-# How long a subscriber's process may lag (or a vanished one be waited for) at most.
-UNACKNOWLEDGED_LIMIT_S = 2.0
+# How long a subscriber's process may lag (or a vanished one be waited for) at most. At 2 s,
+# a subscriber stopped for 1 s on 2 busy cores had not caught up when the publisher went
+# (ci93: the lessons' topic_publish lost 1 message of 3); a caught-up one acknowledges in ms.
+UNACKNOWLEDGED_LIMIT_S = 5.0
 
 
 def keep_until_acknowledged(

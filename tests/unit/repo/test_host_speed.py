@@ -8,9 +8,11 @@ from host_speed import LOOP_ADDITIONS, host_speed_line, loop_cpu_s, start_ms
 
 
 def test_the_loop_figure_grows_with_the_loop() -> None:
-    small, large = loop_cpu_s(LOOP_ADDITIONS // 4), loop_cpu_s(LOOP_ADDITIONS)
-    # an interpreter's start alone is the same for both: the loop's own CPU is what is counted
-    assert 2.0 < large / small < 6.0, (small, large)
+    # four times the additions; the least of two tries each (ci93, on 2 busy cores: 6.7 times)
+    small = min(loop_cpu_s(LOOP_ADDITIONS // 4) for _ in range(2))
+    large = min(loop_cpu_s(LOOP_ADDITIONS) for _ in range(2))
+    # a figure that ignored the loop (an interpreter's start alone) would stay near 1
+    assert large / small > 2.0, (small, large)
 
 
 def test_the_line_gives_both_figures() -> None:
