@@ -81,13 +81,16 @@ def pytest_sessionstart(session: pytest.Session) -> None:
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """Deal the longest files first (tests/support/file_order.py). Never rerun a notebook's
+    """Deal the longest files first, those that wait for the learners' environment after each
+    worker's first (tests/support/file_order.py). Never rerun a notebook's
     cell: a rerun runs it alone in a fresh kernel, without the cells before it (CI saw lesson
     2's self-check fail with "name 'lesson' is not defined" after its cell 5 was rerun), which
     hides the first failure behind a false one."""
     from nbval.plugin import IPyNbCell
 
-    items[:] = longest_first(items, read_seconds())
+    late = {file_of(item.nodeid) for item in items if item.get_closest_marker("learners_env")}
+    workers = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1"))
+    items[:] = longest_first(items, read_seconds(), late=late, workers=workers)
     for item in items:
         if isinstance(item, IPyNbCell):
             item.add_marker(pytest.mark.flaky(reruns=0))

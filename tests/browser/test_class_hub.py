@@ -25,7 +25,13 @@ from view import MOVED, VIEW, drive_and_watch
 
 from course_lib.core.waiting import wait_until
 
-pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
+pytestmark = [
+    pytest.mark.browser,
+    pytest.mark.ros,
+    pytest.mark.sim,
+    pytest.mark.slow,
+    pytest.mark.learners_env,
+]
 
 LEARNERS = ("r2pc-alice", "r2pc-bob", "r2pc-carol")
 ADMIN = "r2pc-teacher"

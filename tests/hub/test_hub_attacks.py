@@ -32,6 +32,7 @@ OWN_NETWORK_ENV = "COURSE_TEST_OWN_NETWORK"
 pytestmark = [
     pytest.mark.ros,
     pytest.mark.slow,
+    pytest.mark.learners_env,
     pytest.mark.skipif(
         os.environ.get(OWN_NETWORK_ENV) != "1",
         reason="run by test_hub_attacks_own_network.py, in a network namespace of their own",

@@ -20,7 +20,7 @@ from test_hub_attacks import OWN_NETWORK_ENV
 from course_lib.core.paths import REPO_ROOT
 from course_lib.hub.wall import wall_problem
 
-pytestmark = [pytest.mark.ros, pytest.mark.slow]
+pytestmark = [pytest.mark.ros, pytest.mark.slow, pytest.mark.learners_env]
 
 ATTACKS = Path(__file__).with_name("test_hub_attacks.py")
 _ENTER = (

@@ -21,7 +21,7 @@ from hub_sign_in import sign_in
 from course_lib.hub.launcher import NO_WALL_ENV
 from course_lib.hub.wall import wall_problem
 
-pytestmark = [pytest.mark.slow]
+pytestmark = [pytest.mark.slow, pytest.mark.learners_env]
 
 LEARNER, ADMIN = "r2pw-dee", "r2pw-dad"
 REPORTED_WITHIN_S = 30.0  # the server's own start and death take a few seconds

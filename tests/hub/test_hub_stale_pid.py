@@ -10,7 +10,7 @@ from collections.abc import Iterator
 import pytest
 from class_hub import ClassHub
 
-pytestmark = [pytest.mark.slow]
+pytestmark = [pytest.mark.slow, pytest.mark.learners_env]
 
 
 @pytest.fixture(scope="module")

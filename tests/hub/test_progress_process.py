@@ -107,6 +107,7 @@ def open_parent() -> Iterator[Path]:
 
 @ROOT_ONLY
 @pytest.mark.slow
+@pytest.mark.learners_env
 @pytest.mark.timeout(1800)
 def test_the_service_runs_as_its_own_account_on_the_socket_handed_over(
     open_parent: Path,

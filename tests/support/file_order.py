@@ -5,7 +5,7 @@ test count, deals last). The seconds come from a whole run (`tests/file_seconds.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from pathlib import Path
 from typing import Protocol
 
@@ -52,15 +52,26 @@ def write_seconds(seconds: dict[str, float], path: Path, *, at_least: float = 2.
     atomic_write(path, _HEADER + "".join(f"{s:.0f} {f}\n" for s, f in rows))
 
 
-def longest_first(items: Sequence[_Item], seconds: dict[str, float]) -> list[_Item]:
+def longest_first(
+    items: Sequence[_Item],
+    seconds: dict[str, float],
+    *,
+    late: Collection[str] = (),
+    workers: int = 1,
+) -> list[_Item]:
     """Return `items` with their files ordered by `seconds`, longest first (pure; a file's own
-    tests keep their order; files not listed keep theirs, after the listed ones)."""
+    tests keep their order; files not listed keep theirs, after the listed ones).
+
+    A file in `late` waits at its start for something the run begins at collection (the class
+    hub's learners' environment, about 80 s): it is dealt no earlier than place `workers`, so
+    it starts after a worker's first file instead of standing idle at the run's start (ci95: a
+    worker waited 75 s for the build). xdist deals each worker two files at once, and the
+    first `workers` places are the first file of each."""
     first: dict[str, int] = {}
     for place, item in enumerate(items):
         first.setdefault(file_of(item.nodeid), place)
-
-    def key(item: _Item) -> tuple[float, int]:
-        name = file_of(item.nodeid)
-        return -seconds.get(name, 0.0), first[name]
-
-    return sorted(items, key=key)
+    files = sorted(first, key=lambda name: (-seconds.get(name, 0.0), first[name]))
+    opening = [name for name in files if name not in late][:workers]
+    files = opening + [name for name in files if name not in opening]
+    rank = {name: place for place, name in enumerate(files)}
+    return sorted(items, key=lambda item: rank[file_of(item.nodeid)])

@@ -56,3 +56,47 @@ def test_a_bad_line_names_its_file_and_line(tmp_path: Path) -> None:
 def test_xdist_keeps_the_order() -> None:
     """xdist's own order (most tests first) would deal the long one-test files last."""
     assert "--no-loadscope-reorder" in pytest_argv([])
+
+
+def _order(nodeids: list[str], seconds: dict[str, float], **kwargs: object) -> list[str]:
+    return [i.nodeid for i in longest_first([Item(n) for n in nodeids], seconds, **kwargs)]
+
+
+def test_a_file_that_waits_for_the_build_starts_after_a_workers_first_file() -> None:
+    seconds = {"walk.py": 200.0, "hub.py": 150.0, "b.py": 100.0, "c.py": 90.0, "d.py": 50.0}
+    nodeids = ["d.py::t", "c.py::t", "hub.py::t1", "b.py::t", "walk.py::t", "hub.py::t2"]
+    assert _order(nodeids, seconds, late={"hub.py"}, workers=2) == [
+        "walk.py::t",
+        "b.py::t",
+        "hub.py::t1",
+        "hub.py::t2",
+        "c.py::t",
+        "d.py::t",
+    ]
+    # two that wait: neither takes the other's place in the first round
+    assert _order(nodeids, seconds, late={"hub.py", "b.py"}, workers=2)[:2] == [
+        "walk.py::t",
+        "c.py::t",
+    ]
+    # already past the first round: its place is kept
+    assert _order(nodeids, seconds, late={"d.py"}, workers=2) == _order(nodeids, seconds)
+    # fewer files than workers: it goes last
+    assert _order(["hub.py::t", "b.py::t"], seconds, late={"hub.py"}, workers=4) == [
+        "b.py::t",
+        "hub.py::t",
+    ]
+
+
+def test_every_file_with_a_class_hub_waits_for_the_learners_environment() -> None:
+    """A hub's start waits for the learners' environment build; a file that starts one without
+    the marker would be dealt first and stand idle for the build (ci95: 75 s)."""
+    users = ("from class_hub import", "from hub_accounts import")
+    unmarked = [
+        str(path.relative_to(REPO_ROOT))
+        for path in sorted((REPO_ROOT / "tests").rglob("test_*.py"))
+        if any(line.startswith(users) for line in path.read_text(encoding="utf-8").splitlines())
+        and "learners_env" not in path.read_text(encoding="utf-8")
+    ]
+    assert not unmarked, (
+        f"files that start a class hub without @pytest.mark.learners_env: {unmarked}"
+    )
