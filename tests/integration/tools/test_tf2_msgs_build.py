@@ -70,6 +70,15 @@ def test_tf2_msgs_builds_from_scratch(built: tuple[Path, float]) -> None:
     assert (install / "share/ament_index/resource_index/rosidl_interfaces/tf2_msgs").is_file()
 
 
+def test_only_the_c_type_supports_are_built(built: tuple[Path, float]) -> None:
+    """rclpy uses the C type supports; the C++ ones were half of every build (make setup, the
+    learners' environment), for C++ nodes the course does not have."""
+    install, _ = built
+    libraries = sorted(p.name for p in (install / "lib").glob("libtf2_msgs__*.so"))
+    assert "libtf2_msgs__rosidl_typesupport_fastrtps_c.so" in libraries
+    assert not [name for name in libraries if name.endswith("_cpp.so")], libraries
+
+
 def test_msg_file_is_installed_where_interface_files_live(built: tuple[Path, float]) -> None:
     install, _ = built
     installed = install / "share/tf2_msgs/msg/TFMessage.msg"
