@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 from file_order import (
@@ -163,14 +164,43 @@ def test_the_files_that_wait_are_dealt_first_as_one_unit() -> None:
     ]
 
 
-def test_xdist_deals_the_lane_as_one_unit(
+class _Worker:
+    """What xdist's scheduler asks of a worker; it keeps the tests it was sent."""
+
+    def __init__(self, name: str) -> None:
+        self.gateway = SimpleNamespace(id=name)  # named in xdist's collection check
+        self.sent: list[int] = []
+        self.shutting_down = False
+
+    def send_runtest_some(self, indices: list[int]) -> None:
+        self.sent.extend(indices)
+
+    def shutdown(self) -> None:
+        self.shutting_down = True
+
+
+def test_xdist_deals_the_lane_to_one_worker_as_one_unit(
     pytestconfig: pytest.Config, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """The scheduler the suite's conftest gives xdist for `--dist loadfile`."""
+    """The scheduler the suite's conftest gives xdist for `--dist loadfile`, driven through
+    xdist's scheduling calls as its controller makes them (two workers)."""
     monkeypatch.setattr(pytestconfig.option, "tx", ["2*popen"])  # what xdist makes of `-n 2`
-    scheduling = WaitingLaneScheduling(pytestconfig, lane={"tests/a.py"})
-    assert scheduling._split_scope("tests/a.py::test_x[1]") == WAITING_LANE
-    assert scheduling._split_scope("tests/b.py::Case::test_y") == "tests/b.py"
+    collection = ["drive.py::a", "drive.py::b", "hz.py::a", "big.py::a", "big.py::b"]
+    collection += ["big.py::c", "small.py::a"]
+    scheduling = WaitingLaneScheduling(pytestconfig, lane={"drive.py", "hz.py"})
+    workers = [_Worker("gw0"), _Worker("gw1")]
+    for worker in workers:
+        scheduling.add_node(worker)  # type: ignore[arg-type]
+    for worker in workers:
+        scheduling.add_node_collection(worker, collection)  # type: ignore[arg-type]
+    scheduling.schedule()
+    sent = [[collection[index] for index in worker.sent] for worker in workers]
+    # the lane's three tests, two files, went to the first worker as one unit: more than two
+    # tests pending, so xdist sent it nothing else yet; the other took the next file
+    assert sent == [
+        ["drive.py::a", "drive.py::b", "hz.py::a"],
+        ["big.py::a", "big.py::b", "big.py::c"],
+    ]
 
 
 def test_the_table_has_a_lane_and_make_test_a_worker_for_it() -> None:
