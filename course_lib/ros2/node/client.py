@@ -151,17 +151,30 @@ class RosClient:
     def _spinning(self, pids: frozenset[int], timeout: float) -> bool:
         """Wait (at most `timeout` s) until every named node of these processes (the low 16
         bits of their pids, as participants carry them) answers a parameter request; return
-        whether all did. Hidden nodes (the course's own clients) have no parameter services."""
+        whether all did. Hidden nodes (the course's own clients) and nodes made without
+        parameter services never answer: the graph's quiet tells when those are whole."""
         deadline = time.monotonic() + timeout
         holders, _settled = self._holders()
         nodes = [
             name
             for name, prefixes in holders.items()
-            if not _is_hidden_name(name) and any(prefix_pid(p) in pids for p in prefixes)
+            if not _is_hidden_name(name)
+            and any(prefix_pid(p) in pids for p in prefixes)
+            and self._offers_parameters(name)
         ]
         return all(
             self.answers(name, timeout=max(0.0, deadline - time.monotonic())) for name in nodes
         )
+
+    def _offers_parameters(self, full_name: str) -> bool:
+        """Return whether the graph shows the node's `list_parameters` service (rclpy makes
+        it in the node's constructor, unless `start_parameter_services=False`)."""
+        namespace, _, name = full_name.rpartition("/")
+        try:
+            services = self.node.get_service_names_and_types_by_node(name, namespace or "/")
+        except NodeNameNonExistentError:
+            return False
+        return any(service == f"{full_name}/list_parameters" for service, _types in services)
 
     def wait_joined(self) -> None:
         """Wait (a warm client) until a node whose process is starting has been seen whole:

@@ -302,15 +302,18 @@ UNJOINED_S = 3.0
 # graph then stayed the same this long (a node without parameter services: this long).
 NEWCOMER_QUIET_S = 0.5
 _CLIENT_MODULES = ("course_lib.ros2.command.cli", "course_lib.ros2.command.quick")
+# A notebook's `%ros2 launch` runs `python -m course_lib.launch`, which never joins DDS.
+_LAUNCH_MODULE = "course_lib.launch"
 
 
 def ros2_client_command(cmdline: Sequence[str]) -> bool:
     """Return whether a command line is a course `ros2` command: no node of its own joins
-    from it (`ros2 param get` asks; `ros2 run` and `ros2 launch` start their nodes as
-    child processes, which are newcomers themselves)."""
+    from it (`ros2 param get` asks; `ros2 run` and `ros2 launch`, from a terminal or a
+    notebook, start their nodes as child processes, which are newcomers themselves)."""
     return any(
         any(module in arg for module in _CLIENT_MODULES)
         or (arg.rpartition("/")[2] == "ros2" and i <= 2)
+        or (arg == _LAUNCH_MODULE and i > 0 and cmdline[i - 1] == "-m")
         for i, arg in enumerate(cmdline)
     )
 

@@ -52,6 +52,28 @@ def test_parameters_reach_the_node(
     assert not os.path.exists(f"/proc/{pid}")
 
 
+def test_a_notebook_launch_is_no_node_starting_but_its_nodes_are(
+    launch_session: Session, launch_env: dict[str, str]
+) -> None:
+    """A command run moments after `%ros2 launch` waits for the nodes the launch starts, not
+    for the launch's own process, which never joins DDS (it held every command for seconds,
+    until it was 6 s old)."""
+    from course_lib.ros2.node.discovery import domain_newcomers
+
+    handle = launch(
+        "parameter_tests", "param_vel.launch.py", session=launch_session, env=launch_env
+    )
+    try:
+        started = handle.wait_for(r"process started with pid", 15.0)
+        assert started, handle.output
+        node_pid = int(started.split("[")[-1].rstrip("]"))
+        newcomers = domain_newcomers(launch_session.domain_id, joined=True)
+        assert node_pid in newcomers
+        assert handle.pid not in newcomers
+    finally:
+        handle.stop()
+
+
 def test_a_dying_process_leaves_the_others_running(
     launch_session: Session, launch_env: dict[str, str]
 ) -> None:

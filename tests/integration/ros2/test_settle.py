@@ -166,3 +166,30 @@ def test_a_participant_that_has_left_does_not_stand_in_for_one_not_seen(reaped: 
         leaving.stop()
         unseen.close()
         own.close()
+
+
+def test_a_joining_node_is_asked_to_answer_only_if_it_has_parameter_services(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A command waits until a node starting now answers a parameter request (its constructor,
+    which makes its publishers, is done). A node made without parameter services never
+    answers: it is left to the graph's quiet (it held every command for NEWCOMER_S)."""
+    from ros2_golden import GOLDEN
+
+    own, client = _young_client()
+    plain = own.spawn([sys.executable, str(GOLDEN / "nodes" / "param_vel_node.py")], name="a")
+    bare = own.spawn(
+        [sys.executable, str(GOLDEN / "nodes" / "no_param_services_node.py")], name="b"
+    )
+    try:
+        for name in ("/param_vel_node", "/no_param_services_node"):
+            assert client.wait_for_node(name, include_hidden=False, timeout=15)
+        assert client.services_ready("/param_vel_node", timeout=15)
+        assert client.wait_all_seen(15)  # every endpoint named: as wait_joined asks
+        asked: list[str] = []
+        monkeypatch.setattr(client, "answers", lambda name, timeout: asked.append(name) or True)
+        pids = frozenset(child.pid & 0xFFFF for child in (plain, bare))
+        assert client._spinning(pids, 5.0)
+        assert asked == ["/param_vel_node"]
+    finally:
+        own.close()

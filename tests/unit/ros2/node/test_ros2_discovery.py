@@ -327,4 +327,7 @@ def test_ros2_commands_are_not_nodes_starting() -> None:
     script = "import sys; from course_lib.ros2.command.cli import main; sys.exit(main())"
     assert ros2_client_command(("python", "-c", script, "node", "list"))
     assert ros2_client_command((f"{venv}/python", f"{venv}/ros2", "run", "pkg", "exe"))
+    launch = ("python", "-m", "course_lib.launch", "--noninteractive", "pkg", "a.launch.py")
+    assert ros2_client_command(launch)  # a notebook's %ros2 launch
     assert not ros2_client_command(("python3", "param_vel_node.py"))
+    assert not ros2_client_command(("python3", "course_lib.launch"))  # a learner's script
