@@ -332,7 +332,9 @@ def domain_newcomers(
 
     What a settled graph cannot show yet: a node whose process has not joined DDS. The
     processes of a domain carry its ROS_DOMAIN_ID (the course starts every one with it);
-    one that has joined is counted among the bound participants instead.
+    one that has joined is counted among the bound participants instead. A process in
+    another network namespace (a walled class hub numbers its learners' domains from 1 too)
+    is in another domain of the same number: it never joins ours.
     """
     try:
         uptime = float(procfs.PROC.joinpath("uptime").read_text().split()[0])
@@ -340,12 +342,15 @@ def domain_newcomers(
         return []
     tick = os.sysconf("SC_CLK_TCK")
     me, found = os.getpid(), []
+    network = procfs.network_namespace()
     udp: dict[str, int] | None = None
     for pid in procfs.pids():
         start = procfs.start_time(pid)
         if pid == me or start is None or uptime - int(start) / tick > max_age_s:
             continue
         if procfs.environ(pid).get("ROS_DOMAIN_ID", "").strip() != str(domain_id):
+            continue
+        if procfs.network_namespace(pid) != network:
             continue
         cmdline = procfs.cmdline(pid) or ()
         if not cmdline or cmdline[0].rpartition("/")[2] in _SHELLS:
