@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 from cpu_by_test import CpuMeter, read_records, record, summary
-from file_order import deal_order, file_of, read_figures, waiting_lane, write_figures
+from file_order import file_of, longest_first, read_seconds, write_seconds
 from host_speed import host_speed_line
 
 from course_lib.core.paths import REPO_ROOT
@@ -26,7 +26,7 @@ if os.environ.get("COURSE_TRACE_ALLOCATIONS"):  # e.g. 25: frames kept; slow, so
 
     tracemalloc.start(int(os.environ["COURSE_TRACE_ALLOCATIONS"]))
 
-# COURSE_FILE_SECONDS=tests/file_seconds.txt: write each file's seconds and CPU (the order's data)
+# COURSE_FILE_SECONDS=tests/file_seconds.txt: write how long each file took (the order's data)
 _SECONDS_OUT = os.environ.get("COURSE_FILE_SECONDS", "")
 _file_seconds: dict[str, float] = {}
 RERUNS_FILE = REPO_ROOT / "test-artifacts" / "reruns.txt"
@@ -90,10 +90,7 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
 
     late = {file_of(item.nodeid) for item in items if item.get_closest_marker("learners_env")}
     workers = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1"))
-    figures = read_figures()
-    seconds = {name: figure.seconds for name, figure in figures.items()}
-    lane = waiting_lane(figures, workers)  # as the controller's scheduler computes it
-    items[:] = deal_order(items, seconds, late=late, workers=workers, lane=lane)
+    items[:] = longest_first(items, read_seconds(), late=late, workers=workers)
     for item in items:
         if isinstance(item, IPyNbCell):
             item.add_marker(pytest.mark.flaky(reruns=0))
@@ -119,22 +116,7 @@ def pytest_sessionfinish(session: pytest.Session) -> None:
         for name, cpu, wall in _meter.apart():
             record(CPU_FOLDER, name, cpu, wall)
     if _SECONDS_OUT and "PYTEST_XDIST_WORKER" not in os.environ and _file_seconds:
-        cpu: dict[str, float] = {}
-        for row in read_records(CPU_FOLDER) if CPU_FOLDER.is_dir() else []:
-            name = file_of(str(row["test"]))
-            cpu[name] = cpu.get(name, 0.0) + float(row["cpu_s"])  # type: ignore[arg-type]
-        write_figures(_file_seconds, cpu, Path(_SECONDS_OUT))
-
-
-def pytest_xdist_make_scheduler(config: pytest.Config, log: object) -> object | None:
-    """Deal file by file (`--dist loadfile`), the files that wait as one unit of work
-    (tests/support/file_order.py); any other --dist is xdist's own."""
-    if config.getoption("dist") != "loadfile":
-        return None
-    from lane_scheduling import WaitingLaneScheduling
-
-    workers = int(config.getoption("numprocesses") or 1)
-    return WaitingLaneScheduling(config, log, lane=waiting_lane(read_figures(), workers))
+        write_seconds(_file_seconds, Path(_SECONDS_OUT))
 
 
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:

@@ -16,14 +16,11 @@ __all__ = ["pytest_argv", "run_tests"]
 
 def pytest_argv(extra: list[str]) -> list[str]:
     """Return the pytest command line: tests/ and every notebook, one worker per core and two
-    more, and one for the files that mostly wait (tests/support/file_order.py). The tests wait
-    on real processes much of the time: on 2 cores, 2 workers left the cores 65% idle and took
-    714-730 s; on fresh clones 3 took 586-603 s, 4 took 515-585 s with the cores 86-89% busy;
-    4 and the waiting files' worker took 489-514 s, 93-95% busy. Five workers dealt alike took
-    515-554 s, and once a lesson's Run All was lost to a kernel websocket closed as it opened
-    (a jupyter_server race) under that load."""
+    more: the tests wait on real processes much of the time (on 2 cores, 2 workers left them
+    65% idle and took 714-730 s; on fresh clones 3 took 586-603 s, 4 took 520-530 s with the
+    cores about 89% busy, 5 took 517 s; each failure seen only at 4 was a race, since fixed)."""
     cores = os.cpu_count() or 1
-    workers = str(cores + 3) if cores >= 2 else "0"
+    workers = str(cores + 2) if cores >= 2 else "0"
     notebooks = ["notebooks"] if any(NOTEBOOKS_DIR.glob("*.ipynb")) else []
     return [
         sys.executable,
