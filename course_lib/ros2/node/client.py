@@ -49,6 +49,9 @@ SETTLED_QUIET_S = 0.15
 # on a busy host: seen taking over 4 s), a node lookup waits up to this long before "not found".
 INCOMPLETE_WAIT_S = 12.0
 SERVICE_WAIT_S = 5.0
+# A joining node's parameter services follow its name within this long, or it has none
+# (`start_parameter_services=False`: it never answers, so nothing waits for its answer).
+SERVICES_GRACE_S = 1.0
 CALL_TIMEOUT_S = 10.0
 # First wait for a reply before re-sending a read (a reply normally takes about 1 ms).
 FIRST_ATTEMPT_S = 0.5
@@ -155,13 +158,17 @@ class RosClient:
         parameter services never answer: the graph's quiet tells when those are whole."""
         deadline = time.monotonic() + timeout
         holders, _settled = self._holders()
-        nodes = [
+        named = [
             name
             for name, prefixes in holders.items()
-            if not _is_hidden_name(name)
-            and any(prefix_pid(p) in pids for p in prefixes)
-            and self._offers_parameters(name)
+            if not _is_hidden_name(name) and any(prefix_pid(p) in pids for p in prefixes)
         ]
+        # a node's name can come before its services: they have a moment to show
+        wait_until(
+            lambda: all(self._offers_parameters(name) for name in named),
+            min(SERVICES_GRACE_S, timeout),
+        )
+        nodes = [name for name in named if self._offers_parameters(name)]
         return all(
             self.answers(name, timeout=max(0.0, deadline - time.monotonic())) for name in nodes
         )

@@ -191,5 +191,16 @@ def test_a_joining_node_is_asked_to_answer_only_if_it_has_parameter_services(
         pids = frozenset(child.pid & 0xFFFF for child in (plain, bare))
         assert client._spinning(pids, 5.0)
         assert asked == ["/param_vel_node"]
+
+        # a node's name seen before its services (they show 0.3 s later): it is asked
+        offers, shown = client._offers_parameters, time.monotonic() + 0.3
+
+        def services_late(name: str) -> bool:
+            return time.monotonic() >= shown and offers(name)
+
+        monkeypatch.setattr(client, "_offers_parameters", services_late)
+        asked.clear()
+        assert client._spinning(pids, 5.0)
+        assert asked == ["/param_vel_node"]
     finally:
         own.close()
