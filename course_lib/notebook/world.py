@@ -142,27 +142,34 @@ class World:
             latest, seen = self._latest, self._received
         if latest is not None and (predicate is None or predicate(latest)):
             return latest
+        came = 0  # readings that arrived during the wait (the error tells none from no match)
         while True:
             with self._cond:
                 fresh = [(n, reading) for n, reading in self._recent if n > seen]
                 if not fresh:
                     remaining = deadline - time.monotonic()
                     if remaining <= 0:
-                        raise self._no_match(timeout)
+                        raise self._no_match(timeout, came)
                     self._cond.wait(min(remaining, 0.2))
                     continue
             for number, reading in fresh:
-                seen = number
+                seen, came = number, came + 1
                 if predicate is None or predicate(reading):
                     return reading
             if time.monotonic() >= deadline:
-                raise self._no_match(timeout)
+                raise self._no_match(timeout, came)
 
-    def _no_match(self, timeout: float) -> TimeoutError:
-        """Return the error of a wait that found no matching reading (a stopped simulation
-        raises its own error here instead)."""
+    def _no_match(self, timeout: float, came: int) -> TimeoutError:
+        """Return the error of a wait that found no matching reading among the `came` that
+        arrived (a stopped simulation raises its own error here instead)."""
         self._check_alive()
-        return TimeoutError(f"no matching /odom within {timeout:g} s")
+        if came:
+            return TimeoutError(
+                f"no matching /odom within {timeout:g} s ({came} readings came, none matched)"
+            )
+        return TimeoutError(
+            f"no /odom within {timeout:g} s: the simulation runs but sent no reading"
+        )
 
     def odom(self) -> OdomReading:
         """Return the latest /odom reading."""

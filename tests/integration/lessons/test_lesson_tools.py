@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import signal
 from collections.abc import Iterator
 
 import pytest
@@ -66,3 +68,18 @@ def test_panel_follows_the_node_and_saves_valid_yaml(lesson: Lesson, tmp_path) -
     data = yaml.safe_load(path.read_text())
     assert data[NODE]["ros__parameters"]["travel_time"] == 10.0
     assert api.param_set(NODE, "travel_time", 0.0).successful
+
+
+def test_a_wait_for_odom_says_whether_readings_came(lesson: Lesson) -> None:
+    """A wait that times out tells a condition never met from a simulation that sent nothing
+    (a paused one here): the two call for different searches."""
+    world = lesson.current_world
+    with pytest.raises(TimeoutError, match=r"\(\d+ readings came, none matched\)"):
+        world.wait_for_odom(lambda _reading: False, timeout=0.5)
+    os.kill(world.process.pid, signal.SIGSTOP)
+    try:
+        with pytest.raises(TimeoutError, match="the simulation runs but sent no reading"):
+            world.wait_for_odom(lambda _reading: False, timeout=0.5)
+    finally:
+        os.kill(world.process.pid, signal.SIGCONT)
+    assert world.wait_for_odom(timeout=10.0)
