@@ -99,6 +99,17 @@ def environ(pid: int) -> dict[str, str]:
     return {k.decode(errors="replace"): v.decode(errors="replace") for k, _, v in pairs}
 
 
+def maps_library(pid: int, name: str) -> bool:
+    """Return whether process `pid` has a shared library `name` (e.g. "librcl.so") mapped;
+    False if it is gone or not ours to read."""
+    try:
+        with open(PROC / str(pid) / "maps", "rb") as maps:
+            needle = b"/" + name.encode()
+            return any(needle in line for line in maps)
+    except OSError:
+        return False
+
+
 def owner_uid(pid: int) -> int | None:
     """Return the Unix user that owns process `pid`, or None if it is gone."""
     try:

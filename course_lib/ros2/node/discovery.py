@@ -294,9 +294,11 @@ def wait_settled(
 # A process of the domain younger than this may still be starting its node (a Python
 # importing rclpy before its participant binds: about a second, several on a loaded machine).
 NEWCOMER_S = 6.0
-# ... but one that has not bound a participant's port by this age is taken for a process
-# that is no ROS node (a learner's plain script): it holds no command longer.
+# ... but one that has not bound a participant's port by this age, nor loaded ROS (rcl), is
+# taken for a process that is no ROS node (a learner's plain script, a kernel not yet at its
+# lesson's first cell): it holds no command longer.
 UNJOINED_S = 3.0
+_RCL_LIBRARY = "librcl.so"
 # A new node creates its endpoints one by one as its constructor runs (its publishers after
 # its parameter services): it is taken as whole once it spins (it answers a request) and the
 # graph then stayed the same this long (a node without parameter services: this long).
@@ -328,7 +330,9 @@ def domain_newcomers(
     ago that may be starting a node but have not joined DDS yet (no participant port bound:
     once bound, the participant is counted by read_bound_participants);
     this process, shells and `ros2` query commands left out. With `joined`, those that
-    have joined too.
+    have joined too. Either way, a process with no participant after UNJOINED_S that has not
+    loaded ROS is no node starting (a kernel not yet at its lesson, a plain script): it holds
+    no command longer.
 
     What a settled graph cannot show yet: a node whose process has not joined DDS. The
     processes of a domain carry its ROS_DOMAIN_ID (the course starts every one with it);
@@ -346,7 +350,8 @@ def domain_newcomers(
     udp: dict[str, int] | None = None
     for pid in procfs.pids():
         start = procfs.start_time(pid)
-        if pid == me or start is None or uptime - int(start) / tick > max_age_s:
+        age = None if start is None else uptime - int(start) / tick
+        if pid == me or age is None or age > max_age_s:
             continue
         if procfs.environ(pid).get("ROS_DOMAIN_ID", "").strip() != str(domain_id):
             continue
@@ -357,15 +362,13 @@ def domain_newcomers(
             continue
         if ros2_client_command(cmdline):
             continue
-        if joined:
-            found.append(pid)
-            continue
-        if uptime - int(start) / tick > UNJOINED_S:
-            continue  # no participant after this long: not a node starting (a plain script)
         udp = procfs.udp_socket_inodes() if udp is None else udp
         ports = [udp[t] for t in procfs.fd_targets(pid) if t in udp]
-        if not bound_participants(domain_id, ports):  # its participant's port: counted
-            found.append(pid)
+        if bound_participants(domain_id, ports):  # joined: read_bound_participants counts it
+            if joined:
+                found.append(pid)
+        elif age <= UNJOINED_S or procfs.maps_library(pid, _RCL_LIBRARY):
+            found.append(pid)  # may still be starting a node (a slow `import rclpy` has rcl)
     return found
 
 

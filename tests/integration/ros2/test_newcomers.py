@@ -11,12 +11,15 @@ from __future__ import annotations
 
 import os
 import shutil
+import sys
+import time
 
 import pytest
 
+from course_lib.core import procfs
 from course_lib.core.waiting import wait_until
 from course_lib.processes.children import spawn
-from course_lib.ros2.node.discovery import domain_newcomers
+from course_lib.ros2.node.discovery import NEWCOMER_S, UNJOINED_S, domain_newcomers
 
 pytestmark = pytest.mark.ros
 
@@ -42,3 +45,25 @@ def test_a_process_of_the_same_domain_number_in_another_network_is_no_newcomer()
     finally:
         here.stop()
         walled.stop()
+
+
+def test_a_process_that_never_loads_ros_stops_being_a_newcomer_after_unjoined_s() -> None:
+    """A kernel opened beside a running lesson (it joins only at its lesson's first cell) or a
+    plain script holds a command for UNJOINED_S, not NEWCOMER_S (it held every lookup of the
+    lab until it was 6 s old); a process importing rclpy on a busy host is still waited for."""
+    env = {**os.environ, "ROS_DOMAIN_ID": DOMAIN}
+    plain = spawn(["sleep", "30"], name="a plain program", env=env)
+    importing = spawn(
+        [sys.executable, "-c", "import rclpy, time; time.sleep(30)"], name="no node yet", env=env
+    )
+    started = time.monotonic()
+    try:
+        assert wait_until(lambda: procfs.maps_library(importing.pid, "librcl.so"), 5)
+        time.sleep(max(0.0, started + UNJOINED_S + 0.5 - time.monotonic()))
+        newcomers = domain_newcomers(int(DOMAIN), joined=True)
+        assert plain.pid not in newcomers
+        assert importing.pid in newcomers, "a process that loaded ROS may still start a node"
+        assert UNJOINED_S + 0.5 < NEWCOMER_S
+    finally:
+        plain.stop()
+        importing.stop()

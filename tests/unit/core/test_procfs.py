@@ -35,3 +35,10 @@ def test_a_missing_process_reads_as_none() -> None:
 def test_udp_tables_give_local_ports_of_ipv4_and_ipv6() -> None:
     assert procfs.udp_ports([UDP]) == {0x1CE8, 0x6A18}
     assert procfs.udp_ports([]) == set()
+
+
+def test_maps_library_names_what_a_process_has_loaded() -> None:
+    me = os.getpid()
+    assert procfs.maps_library(me, "libc.so")  # every CPython on glibc
+    assert not procfs.maps_library(me, "libno_such_library.so")
+    assert not procfs.maps_library(2**22 + 1, "libc.so")  # no such process
