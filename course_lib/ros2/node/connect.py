@@ -19,6 +19,7 @@ from pathlib import Path
 from ...core import procfs
 from ...core.waiting import wait_until
 from ...processes.children import OWNER_ENV, owner_tag
+from .discovery import of_domain_here
 from .wire import (
     DaemonUnavailable,
     connect,
@@ -179,6 +180,5 @@ def daemon_pids(domain_id: int | str) -> list[int]:
         pid
         for pid in procfs.pids()
         if "course_lib.ros2.command.daemon" in (procfs.cmdline(pid) or ())
-        and procfs.environ(pid).get("ROS_DOMAIN_ID") == str(domain_id)
-        and procfs.network_namespace(pid) == network
+        and of_domain_here(pid, domain_id, network)
     ]

@@ -34,6 +34,7 @@ __all__ = [
     "DiscoveryTiming",
     "GraphView",
     "domain_newcomers",
+    "of_domain_here",
     "present_participants",
     "requested_spin_time",
     "timing_from_profile",
@@ -323,6 +324,16 @@ def ros2_client_command(cmdline: Sequence[str]) -> bool:
 _SHELLS = frozenset({"bash", "sh", "dash", "zsh", "fish", "tmux", "screen"})
 
 
+def of_domain_here(pid: int, domain_id: int | str, network: str | None) -> bool:
+    """Return whether process `pid` carries ROS_DOMAIN_ID `domain_id` in the network
+    namespace `network` (procfs.network_namespace()): the same number in another network (a
+    walled class hub numbers its learners' domains from 1 too) is another domain."""
+    return (
+        procfs.environ(pid).get("ROS_DOMAIN_ID", "").strip() == str(domain_id)
+        and procfs.network_namespace(pid) == network
+    )
+
+
 def domain_newcomers(
     domain_id: int, *, max_age_s: float = NEWCOMER_S, joined: bool = False
 ) -> list[int]:
@@ -336,9 +347,8 @@ def domain_newcomers(
 
     What a settled graph cannot show yet: a node whose process has not joined DDS. The
     processes of a domain carry its ROS_DOMAIN_ID (the course starts every one with it);
-    one that has joined is counted among the bound participants instead. A process in
-    another network namespace (a walled class hub numbers its learners' domains from 1 too)
-    is in another domain of the same number: it never joins ours.
+    one that has joined is counted among the bound participants instead. A process of the
+    same number in another network is in another domain (`of_domain_here`).
     """
     try:
         uptime = float(procfs.PROC.joinpath("uptime").read_text().split()[0])
@@ -353,9 +363,7 @@ def domain_newcomers(
         age = None if start is None else uptime - int(start) / tick
         if pid == me or age is None or age > max_age_s:
             continue
-        if procfs.environ(pid).get("ROS_DOMAIN_ID", "").strip() != str(domain_id):
-            continue
-        if procfs.network_namespace(pid) != network:
+        if not of_domain_here(pid, domain_id, network):
             continue
         cmdline = procfs.cmdline(pid) or ()
         if not cmdline or cmdline[0].rpartition("/")[2] in _SHELLS:
