@@ -17,8 +17,10 @@ __all__ = ["pytest_argv", "run_tests"]
 def pytest_argv(extra: list[str]) -> list[str]:
     """Return the pytest command line: tests/ and every notebook, one worker per core and two
     more: the tests wait on real processes much of the time (on 2 cores, 2 workers left them
-    65% idle and took 714-730 s; on fresh clones 3 took 586-603 s, 4 took 520-530 s with the
-    cores about 89% busy, 5 took 517 s; each failure seen only at 4 was a race, since fixed)."""
+    65% idle and took 714-730 s; on fresh clones 3 took 586-603 s, 4 took 507-578 s with the
+    cores 84-89% busy and no rerun in 24 of 25 runs. A fifth worker took 487-531 s at 93-95%
+    busy, but at that load tests failed that never fail at 4: a lesson's Run All lost to a
+    kernel websocket closed as it opened, a panel that missed a value for 10 s)."""
     cores = os.cpu_count() or 1
     workers = str(cores + 2) if cores >= 2 else "0"
     notebooks = ["notebooks"] if any(NOTEBOOKS_DIR.glob("*.ipynb")) else []

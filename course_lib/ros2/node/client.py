@@ -163,14 +163,19 @@ class RosClient:
             for name, prefixes in holders.items()
             if not _is_hidden_name(name) and any(prefix_pid(p) in pids for p in prefixes)
         ]
-        # a node's name can come before its services: they have a moment to show
-        wait_until(
-            lambda: all(self._offers_parameters(name) for name in named),
-            min(SERVICES_GRACE_S, timeout),
-        )
-        nodes = [name for name in named if self._offers_parameters(name)]
+        # a node's name can come before its services: they have a moment to show (each node
+        # is looked up until they do, not again)
+        offering: set[str] = set()
+
+        def all_offer() -> bool:
+            offering.update(n for n in named if n not in offering and self._offers_parameters(n))
+            return len(offering) == len(named)
+
+        wait_until(all_offer, min(SERVICES_GRACE_S, timeout))
         return all(
-            self.answers(name, timeout=max(0.0, deadline - time.monotonic())) for name in nodes
+            self.answers(name, timeout=max(0.0, deadline - time.monotonic()))
+            for name in named
+            if name in offering
         )
 
     def _offers_parameters(self, full_name: str) -> bool:

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import os
 import signal
+import time
 from collections.abc import Iterator
 
 import pytest
 import yaml
 
 from course_lib.config.course import load_course_settings
+from course_lib.core.waiting import wait_until
 from course_lib.lessons import Lesson
 from course_lib.ros2.api import nodes_and_params as api
 from course_lib.session.session import get_session
@@ -78,6 +80,15 @@ def test_a_wait_for_odom_says_whether_readings_came(lesson: Lesson) -> None:
         world.wait_for_odom(lambda _reading: False, timeout=0.5)
     os.kill(world.process.pid, signal.SIGSTOP)
     try:
+        # readings sent just before the pause are still on their way: let them arrive first
+        last = [time.monotonic()]
+
+        def arrived(_reading: object) -> None:
+            last[0] = time.monotonic()
+
+        world.add_odom_listener(arrived)
+        assert wait_until(lambda: time.monotonic() - last[0] > 0.3, 5), "readings kept coming"
+        world.remove_odom_listener(arrived)
         with pytest.raises(TimeoutError, match="the simulation runs but sent no reading"):
             world.wait_for_odom(lambda _reading: False, timeout=0.5)
     finally:
