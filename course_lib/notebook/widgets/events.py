@@ -18,6 +18,7 @@ __all__ = [
     "ParameterEventsFeed",
     "changes_of",
     "parameter_events",
+    "sim_now",
     "subscribe_parameter_events",
 ]
 
@@ -83,7 +84,7 @@ class ParameterEventsFeed:
         from ...core import param_journal
         from ...ros2.values import event_record
 
-        record = event_record(msg, _sim_now(self._session))
+        record = event_record(msg, sim_now(self._session))
         if record is not None:
             param_journal.append(self._session.domain_id, record)
 
@@ -99,7 +100,7 @@ class ParameterEventsFeed:
         return stop
 
 
-def _sim_now(session: Any) -> float | None:
+def sim_now(session: Any) -> float | None:
     """Return the simulated time of the world this kernel shows, if any (from /odom)."""
     from ..world import _worlds
 

@@ -2,10 +2,14 @@
 lesson's node marked (another node's changes are not this plot's story).
 
 The picture is the replay's SVG (`viz.speed_svg`): text the browser draws, a few ms to build,
-so a live plot costs its kernel no plotting library and little CPU."""
+so a live plot costs its kernel no plotting library and little CPU. The live plot redraws at
+most once per REFRESH_S; `still()` and `close()` draw what came since the last redraw before
+they end it (issue 59: Run All reaches `plot.still()` within a second of the last redraw, and
+the live plot froze about 2.5 s into a 3 s drive)."""
 
 from __future__ import annotations
 
+import logging
 import threading
 from collections import deque
 from typing import Any
@@ -15,6 +19,8 @@ from ...viz.speed_svg import speed_svg
 from .events import changes_of, subscribe_parameter_events
 
 __all__ = ["REFRESH_S", "SpeedPlot"]
+
+_log = logging.getLogger(__name__)
 
 REFRESH_S = 1.0  # the live plot redraws at most this often, and only after new samples
 SAMPLES_DEPTH = 20  # 2 s of /odom's samples (a message per 0.1 s) wait while the kernel is busy
@@ -35,6 +41,7 @@ class SpeedPlot:
         self._unplaced: list[str] = []  # changes heard before any sample: placed at the first
         self.time_jumps = 0  # simulated time going back: the world restarted, or two worlds
         self._lock = threading.Lock()
+        self._draw_lock = threading.Lock()  # one drawing at a time: the last one sent wins
         self._stop = threading.Event()
         self._fresh = threading.Event()  # set by new samples or marks: the picture changed
         self.redraws = 0  # live redraws so far
@@ -119,20 +126,33 @@ class SpeedPlot:
             if self._stop.is_set() or self.session.closed:
                 return
             self._fresh.clear()
-            self._image.value = self.svg()
+            try:
+                self._draw()
+            except Exception:  # a failed drawing never ends the live plot: the next may work
+                _log.exception("the live speed plot could not be redrawn")
             self.redraws += 1
             if self._stop.wait(REFRESH_S):
                 return
 
+    def _draw(self, *, final: bool = False) -> str:
+        """Show the picture so far in the live widget; return its SVG. Once the plot is
+        ended only the final drawing is shown (a late one of the refresh thread is not)."""
+        with self._draw_lock:
+            svg = self.svg()
+            if self._image is not None and (final or not self._stop.is_set()):
+                self._image.value = svg
+            return svg
+
     def still(self) -> Any:
-        """Stop the live refresh and return the final plot as a picture."""
+        """End the live plot on the whole run so far and return that picture, still."""
         from IPython.display import SVG
 
         self.close()
-        return SVG(data=self.svg())
+        return SVG(data=self._draw(final=True))  # the live widget's last picture, too
 
     def close(self) -> None:
-        """Stop refreshing and listening; idempotent."""
+        """Stop refreshing and listening, then show everything heard in the live plot (the
+        samples since its last redraw too); idempotent."""
         self._stop.set()
         self._fresh.set()  # wakes the refresh thread, which then ends
         if self._thread is not None:
@@ -141,3 +161,4 @@ class SpeedPlot:
         if self._odom is not None and not self.session.closed:
             self.session.node.destroy_subscription(self._odom)
         self._odom = None
+        self._draw(final=True)

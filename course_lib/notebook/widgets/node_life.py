@@ -1,0 +1,208 @@
+"""Whether a node a widget shows still runs, and how to start it again (issue 59).
+
+One look-up of the session's graph every LOOK_S, in the session's executor, serves every node
+followed in that session: no service call, no busy polling, and no timer at all while nothing
+is followed. A node is known by its /parameter_events publishers' GIDs, so a node stopped and
+started again between two look-ups is still seen to be another one.
+"""
+
+from __future__ import annotations
+
+import logging
+import shlex
+import threading
+import time
+import weakref
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from ...core.errors import CourseError
+
+__all__ = [
+    "LOOK_S",
+    "GraphWatch",
+    "Identity",
+    "NodeNotRunningError",
+    "Stopped",
+    "graph_watch",
+    "start_command",
+    "stopped_now",
+]
+
+_log = logging.getLogger(__name__)
+
+LOOK_S = 0.5  # two graph look-ups a second for all followed nodes (each well under 1 ms)
+PARAMETER_EVENTS = "/parameter_events"
+
+Identity = frozenset[bytes]  # empty while the node does not run
+
+
+def _full_name(namespace: str, name: str) -> str:
+    return namespace.rstrip("/") + "/" + name
+
+
+class GraphWatch:
+    """Look the followed nodes up in one session's graph, LOOK_S apart, and tell each follower
+    what it found (its node's identity) on every look-up."""
+
+    def __init__(self, session: Any) -> None:
+        self.session = session
+        self._followers: dict[int, tuple[str, Callable[[Identity], None]]] = {}
+        self._lock = threading.Lock()
+        self._timer: Any = None
+
+    def identity(self, node: str) -> Identity:
+        """Return the GIDs of `node`'s /parameter_events publishers (a node made without one:
+        its name while the graph lists it); empty if it does not run."""
+        return self._identities({node})[node]
+
+    def _identities(self, nodes: set[str]) -> dict[str, Identity]:
+        graph = self.session.node
+        gids: dict[str, set[bytes]] = {node: set() for node in nodes}
+        for info in graph.get_publishers_info_by_topic(PARAMETER_EVENTS):
+            full = _full_name(info.node_namespace, info.node_name)
+            if full in gids:
+                gids[full].add(bytes(info.endpoint_gid))
+        if not all(gids.values()):
+            listed = {_full_name(ns, n) for n, ns in graph.get_node_names_and_namespaces()}
+            for node, found in gids.items():
+                if not found and node in listed:
+                    found.add(node.encode())
+        return {node: frozenset(found) for node, found in gids.items()}
+
+    def look(self) -> None:
+        """Look every followed node up now and tell its followers (an error is logged: raised
+        in the session's executor, it would end the session's ROS thread)."""
+        with self._lock:
+            followers = list(self._followers.values())
+        if not followers or self.session.closed:
+            return
+        try:
+            found = self._identities({node for node, _ in followers})
+        except Exception:  # the session closing under the look-up
+            _log.exception("a graph look-up failed")
+            return
+        for node, callback in followers:
+            try:
+                callback(found[node])
+            except Exception:  # one widget's error never silences another
+                _log.exception("a follower of %s failed", node)
+
+    def follow(self, node: str, callback: Callable[[Identity], None]) -> Callable[[], None]:
+        """Call `callback` with `node`'s identity on every look-up; return what stops it."""
+        key = id(callback)
+        with self._lock:
+            self._followers[key] = (node, callback)
+            if self._timer is None:
+                self._timer = self.session.node.create_timer(LOOK_S, self.look)
+
+        def stop() -> None:
+            with self._lock:
+                self._followers.pop(key, None)
+                timer = self._timer if not self._followers else None
+                if timer is not None:
+                    self._timer = None
+            if timer is not None and not self.session.closed:
+                self.session.node.destroy_timer(timer)
+
+        return stop
+
+
+_watches: weakref.WeakKeyDictionary[Any, GraphWatch] = weakref.WeakKeyDictionary()
+_watches_lock = threading.Lock()
+
+
+def graph_watch(session: Any) -> GraphWatch:
+    """Return `session`'s graph watch (made the first time)."""
+    with _watches_lock:
+        watch = _watches.get(session)
+        if watch is None:
+            watch = _watches[session] = GraphWatch(session)
+        return watch
+
+
+@dataclass(frozen=True)
+class Stopped:
+    """A node that left the graph: when it was seen gone, and how to start it again."""
+
+    node: str
+    when: str  # "sim time 12.3 s", or the wall clock without a simulation
+    command: str | None  # the `%ros2 run` line that starts it, if the course knows it
+
+    @property
+    def remedy(self) -> str:
+        """Return what to do: the command, or the cell that starts the node."""
+        if self.command:
+            return f"start it again with `{self.command}`"
+        return "run the cell that starts it"
+
+    @property
+    def line(self) -> str:
+        """Return the one line a widget shows while the node is gone."""
+        return f"{self.node} is not running (stopped at {self.when}): {self.remedy}"
+
+
+class NodeNotRunningError(CourseError):
+    """A widget was asked for the values of a node that has stopped."""
+
+    def __init__(self, stopped: Stopped) -> None:
+        super().__init__(
+            f"{stopped.node} is not running (stopped at {stopped.when}): "
+            "the panel cannot read its values",
+            hint=f"{stopped.remedy}; the panel reads them again once it runs.",
+        )
+        self.stopped = stopped
+
+
+def stopped_now(session: Any, node: str, command: str | None) -> Stopped:
+    """Return a Stopped for `node`, seen gone now (simulated time if a world is shown)."""
+    from .events import sim_now
+
+    sim = sim_now(session)
+    when = f"sim time {sim:.1f} s" if sim is not None else time.strftime("%H:%M:%S")
+    return Stopped(node, when, command)
+
+
+def _started(records: list[dict[str, Any]], node: str) -> dict[str, Any] | None:
+    """Return the last start record of `node`: named in it, or by the next `named` record of
+    its executable (a notebook's door learns the name from the node's log)."""
+    found = None
+    unnamed: dict[Any, dict[str, Any]] = {}  # executable -> its last start, not named yet
+    for record in records:
+        kind, executable = record.get("t"), record.get("exe")
+        if kind == "start" and record.get("node"):
+            found = record if record["node"] == node else found
+        elif kind == "start":
+            unnamed[executable] = record
+        elif kind == "named" and executable in unnamed:
+            start = unnamed.pop(executable)
+            found = start if record.get("node") == node else found
+    return found
+
+
+def _package_of(executable: str, env: Any) -> str | None:
+    """Return the one package with `executable` (None if none or several have it)."""
+    from ...core import ament
+
+    packages = [
+        p for p in ament.list_packages(env) if executable in ament.package_executables(p, env)
+    ]
+    return packages[0] if len(packages) == 1 else None
+
+
+def start_command(session: Any, node: str) -> str | None:
+    """Return the `%ros2 run` line that started `node` last (from the parameter journal), or
+    None if the course did not start it that way (a launch file, a terminal, unknown)."""
+    from ...core.param_journal import read_journal
+
+    record = _started(read_journal(session.domain_id), node)
+    if record is None or record.get("door") in ("launch", "terminal"):
+        return None
+    executable = str(record.get("exe") or "")
+    package = _package_of(executable, session.env) if executable else None
+    if package is None:
+        return None
+    args = [str(a) for a in record.get("args") or []]
+    words = ["%ros2", "run", package, executable, *(["--ros-args", *args] if args else [])]
+    return " ".join(shlex.quote(word) for word in words)
