@@ -131,6 +131,46 @@ _PLAYHEAD_JS = """(function () {
   tick();
 })();
 """
+# Play / Pause, back to the start, and a time slider, always in view (meshcat's own are in its
+# folded control panel). A replay that ended plays again from the start.
+_CONTROLS_HTML = """<div id="replay-bar" role="group" aria-label="Replay">
+<button id="replay-toggle" type="button">Pause</button>
+<button id="replay-restart" type="button">From the start</button>
+<label for="replay-time">Simulated time</label>
+<input id="replay-time" type="range" min="0" max="%(duration)s" step="0.1" value="0">
+<output id="replay-now" for="replay-time">%(start)s s</output>
+</div>
+"""
+_CONTROLS_JS = """(function () {
+  var animator = viewer.animator, start = %(start)s;
+  var toggle = document.getElementById("replay-toggle");
+  var restart = document.getElementById("replay-restart");
+  var slider = document.getElementById("replay-time");
+  var now = document.getElementById("replay-now");
+  function time() { return animator.actions.reduce(function (m, a) {
+    return Math.max(m, a.time); }, 0); }
+  function ended() { return animator.actions.every(function (a) { return !a.isRunning(); }); }
+  function running() { return animator.playing && !ended(); }
+  function show() {
+    var label = running() ? "Pause" : "Play";
+    if (toggle.textContent !== label) toggle.textContent = label;
+    if (document.activeElement !== slider) slider.value = time().toFixed(1);
+    now.textContent = (start + time()).toFixed(1) + " s";
+    requestAnimationFrame(show);
+  }
+  toggle.addEventListener("click", function () {
+    if (running()) { animator.pause(); return; }
+    if (ended()) animator.reset();
+    animator.play();
+  });
+  restart.addEventListener("click", function () { animator.reset(); animator.play(); });
+  slider.addEventListener("input", function () {
+    if (ended()) animator.reset();  // an ended action holds its last frame: free it first
+    animator.pause(); animator.seek(+slider.value);
+  });
+  show();
+})();
+"""
 _NEEDS_SCRIPTS = (
     '<p id="needs-scripts">The 3D motion needs scripts: in JupyterLab click '
     "&ldquo;Trust HTML&rdquo; above it, or open this file in a web browser.</p>"
@@ -159,7 +199,11 @@ def replay_html(
     commands.append(_set_animation(model, frames, fps))
     script = (VIEWER_ROOT / "main.min.js").read_text(encoding="utf-8")
     body = "".join(_command_js(c) for c in commands)
-    pane_height = "100vh" if plot_svg is None else "62vh"
+    pane_height = "calc(100vh - 3em)" if plot_svg is None else "58vh"
+    timing = {
+        "start": f"{frames[0].time_s:.1f}",
+        "duration": f"{frames[-1].time_s - frames[0].time_s:.1f}",
+    }
     plot = ""
     playhead = ""
     if plot_svg is not None:
@@ -172,13 +216,16 @@ def replay_html(
         f"{{width: 100vw; height: {pane_height}; overflow: hidden; position: relative}} "
         "#plot-pane {text-align: center} #plot-pane svg {max-width: 100%; height: auto} "
         "#needs-scripts {position: absolute; top: 40%; width: 100%; text-align: center; "
-        "font-family: sans-serif}</style></head>\n<body>\n"
-        f'<div id="meshcat-pane">{_NEEDS_SCRIPTS}</div>\n{plot}<script>\n{script}\n</script>\n'
+        "font-family: sans-serif} #replay-bar {font-family: sans-serif; padding: 0.4em; "
+        "display: flex; gap: 0.6em; align-items: center} #replay-time {flex: 1}"
+        "</style></head>\n<body>\n"
+        f'<div id="meshcat-pane">{_NEEDS_SCRIPTS}</div>\n{_CONTROLS_HTML % timing}{plot}'
+        f"<script>\n{script}\n</script>\n"
         "<script>\n"
         'document.getElementById("needs-scripts").remove();\n'
         "function bytes(b64) { return Uint8Array.from(atob(b64), c => c.charCodeAt(0)); }\n"
         'var viewer = new MeshCat.Viewer(document.getElementById("meshcat-pane"));\n'
-        f"{body}{_PLAY_JS}{playhead}</script>\n</body>\n</html>\n"
+        f"{body}{_PLAY_JS}{playhead}{_CONTROLS_JS % timing}</script>\n</body>\n</html>\n"
     )
 
 

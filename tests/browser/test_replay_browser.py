@@ -135,3 +135,32 @@ def test_a_replay_plays_from_its_start_after_a_slow_first_frame(
         page.wait_for_function(f"{ANIMATION_TIME} == 0", timeout=20_000)  # played through once
     finally:
         context.close()
+
+
+def test_a_replay_has_play_pause_from_the_start_and_a_time_slider(
+    browser: Any, tmp_path: Path
+) -> None:
+    path = _replay(tmp_path, [(0.25, 0.0, 3.0)])
+    context = browser.new_context(offline=True, viewport={"width": 700, "height": 600})
+    page = context.new_page()
+    try:
+        page.goto(path.as_uri())
+        page.wait_for_function(f"{ANIMATION_TIME} > 0.3", timeout=20_000)  # plays by itself
+        toggle = page.get_by_role("button", name="Pause")
+        toggle.click()
+        paused = page.evaluate(ANIMATION_TIME)
+        page.wait_for_timeout(500)
+        assert page.evaluate(ANIMATION_TIME) == paused, "Pause did not stop the replay"
+        page.get_by_role("button", name="Play").click()
+        page.wait_for_function(f"{ANIMATION_TIME} > {paused} + 0.2", timeout=10_000)
+        slider = page.get_by_label("Simulated time")
+        slider.fill("2.5")  # a keyboard or a drag: the replay stops there
+        page.wait_for_function(f"Math.abs({ANIMATION_TIME} - 2.5) < 0.01", timeout=5_000)
+        assert page.get_by_role("button", name="Play").is_visible()
+        page.get_by_role("button", name="From the start").click()
+        page.wait_for_function(f"{ANIMATION_TIME} < 1.0 && {ANIMATION_TIME} > 0", timeout=5_000)
+        page.wait_for_function(f"{ANIMATION_TIME} == 0", timeout=20_000)  # played through
+        page.get_by_role("button", name="Play").click()  # an ended replay plays again
+        page.wait_for_function(f"{ANIMATION_TIME} > 0.3", timeout=10_000)
+    finally:
+        context.close()
