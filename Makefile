@@ -30,8 +30,8 @@ test: setup  ## Run the whole test suite (unit, integration, notebooks, browser)
 test-fast: setup  ## Unit tests only (no ROS, milliseconds)
 	$(PY) -m pytest tests/unit -q
 
-soak: setup  ## A long random walk through the lessons in one lab (WALK_STEPS=100, WALK_SEED=random)
-	WALK_SOAK=1 WALK_STEPS=$(or $(WALK_STEPS),100) WALK_SEED=$(WALK_SEED) $(PY) -m pytest tests/browser/test_lab_random_walk.py -k soak -s
+soak: setup  ## A long random walk through the lessons in one lab at a person's pace (WALK_STEPS=100, WALK_SEED=random, WALK_PACE=person|ci|none)
+	WALK_SOAK=1 WALK_STEPS=$(or $(WALK_STEPS),100) WALK_SEED=$(WALK_SEED) WALK_PACE=$(WALK_PACE) $(PY) -m pytest tests/browser/test_lab_random_walk.py -k soak -s
 
 bench: setup  ## Print the course's speed and memory figures
 	$(PY) -m bench

@@ -16,12 +16,12 @@ import yaml
 
 from ..core.errors import ConfigError
 from .course import CourseSettings, course_yaml, load_course_settings
+from .floor import CLEARANCE_M, FRONT_M, HALF_WIDTH_M, REAR_M, blocker, free_ahead
 from .loader import display_path
-from .simulation import Obstacle, SimulationSettings, load_simulation_settings, simulation_yaml
+from .simulation import SimulationSettings, load_simulation_settings, simulation_yaml
 from .trip import TIME_MAX_S, VELOCITY_MAX_MPS, answer_trip
 
 __all__ = [
-    "FLOOR_HALF_M",
     "LESSON7_DRIVE_S",
     "check_files_together",
     "check_together",
@@ -30,83 +30,22 @@ __all__ = [
     "load_checked_settings",
 ]
 
-FLOOR_HALF_M = 5.0  # scene.xml: the floor plane is 10 m × 10 m around the origin
 LESSON7_DRIVE_S = 3.0  # lesson 7 drives for 3 s of simulated time at default_velocity_mps
-# The Waffle Pi's footprint around base_footprint (turtlebot3_waffle_pi.xml): the base plate
-# reaches 0.20 m back, the camera 0.09 m forward, the wheels 0.16 m to each side.
-_REAR_M, _FRONT_M, _HALF_WIDTH_M = 0.20, 0.09, 0.16
-_CLEARANCE_M = 0.05  # room kept between the robot and anything it must not touch
 _STOP_M = 0.05  # how far the robot rolls after its velocity drops to 0
 
-Point = tuple[float, float]
 Where = Callable[[str, str], tuple[str, int | None]]
-
-
-def _corners(
-    cx: float, cy: float, yaw: float, back: float, front: float, half: float
-) -> list[Point]:
-    c, s = math.cos(yaw), math.sin(yaw)
-    local = [(-back, -half), (front, -half), (front, half), (-back, half)]
-    return [(cx + x * c - y * s, cy + x * s + y * c) for x, y in local]
-
-
-def _separated(a: list[Point], b: list[Point]) -> bool:
-    """Return True when convex polygons a and b do not overlap (separating axis test)."""
-    for poly in (a, b):
-        for i, (x1, y1) in enumerate(poly):
-            x2, y2 = poly[(i + 1) % len(poly)]
-            axis = (y1 - y2, x2 - x1)
-            pa = [axis[0] * x + axis[1] * y for x, y in a]
-            pb = [axis[0] * x + axis[1] * y for x, y in b]
-            if max(pa) < min(pb) or max(pb) < min(pa):
-                return True
-    return False
-
-
-def _hits(swept: list[Point], obstacle: Obstacle, yaw: float, origin: Point) -> bool:
-    x, y = obstacle.position_m
-    if obstacle.shape == "box":
-        length, width = obstacle.size_m[0], obstacle.size_m[1]
-        box = _corners(x, y, math.radians(obstacle.yaw_deg), length / 2, length / 2, width / 2)
-        return not _separated(swept, box)
-    radius = obstacle.size_m[0] / 2
-    c, s = math.cos(yaw), math.sin(yaw)
-    dx, dy = x - origin[0], y - origin[1]
-    along, across = dx * c + dy * s, -dx * s + dy * c  # the cylinder in the robot's frame
-    xs = [px * c + py * s - (origin[0] * c + origin[1] * s) for px, py in swept]
-    nearest_x = min(max(along, min(xs)), max(xs))
-    nearest_y = min(max(across, -_HALF_WIDTH_M - _CLEARANCE_M), _HALF_WIDTH_M + _CLEARANCE_M)
-    return math.hypot(along - nearest_x, across - nearest_y) < radius
 
 
 def _blocker(sim: SimulationSettings, distance: float) -> str | None:
     """Return what the robot meets driving `distance` straight ahead from its start, or None."""
     pose = sim.start_pose
-    yaw = math.radians(pose.yaw_deg)
-    margin = _CLEARANCE_M
-    swept = _corners(
-        pose.x_m,
-        pose.y_m,
-        yaw,
-        _REAR_M + margin,
-        _FRONT_M + margin + distance,
-        _HALF_WIDTH_M + margin,
-    )
-    if any(abs(x) > FLOOR_HALF_M or abs(y) > FLOOR_HALF_M for x, y in swept):
-        return "the edge of the floor"
-    for obstacle in sim.obstacles:
-        if _hits(swept, obstacle, yaw, (pose.x_m, pose.y_m)):
-            return obstacle.name
-    return None
+    return blocker(sim, pose.x_m, pose.y_m, math.radians(pose.yaw_deg), distance)
 
 
 def free_distance_m(sim: SimulationSettings, limit: float = 3.0) -> float:
     """Return how far the robot can drive straight ahead from its start pose (cm steps)."""
-    step = 0.01
-    distance = 0.0
-    while distance + step <= limit and _blocker(sim, distance + step) is None:
-        distance += step
-    return round(distance, 2)
+    pose = sim.start_pose
+    return free_ahead(sim, pose.x_m, pose.y_m, math.radians(pose.yaw_deg), limit=limit).free_m
 
 
 def _start_problems(sim: SimulationSettings, where: Where) -> list[ConfigError]:
@@ -119,8 +58,8 @@ def _start_problems(sim: SimulationSettings, where: Where) -> list[ConfigError]:
             *where("simulation.yaml", "start_pose"),
             "start_pose",
             f"the robot at ({pose.x_m:g}, {pose.y_m:g}) facing {pose.yaw_deg:g}° overlaps "
-            f"{blocker} (it needs {_REAR_M + _CLEARANCE_M:.2f} m behind, "
-            f"{_FRONT_M + _CLEARANCE_M:.2f} m ahead and {_HALF_WIDTH_M + _CLEARANCE_M:.2f} m "
+            f"{blocker} (it needs {REAR_M + CLEARANCE_M:.2f} m behind, "
+            f"{FRONT_M + CLEARANCE_M:.2f} m ahead and {HALF_WIDTH_M + CLEARANCE_M:.2f} m "
             "to each side)",
             f"move start_pose or {blocker} so that the robot stands clear of it.",
         )

@@ -15,6 +15,7 @@ __all__ = [
     "find_executable",
     "list_packages",
     "package_executables",
+    "package_of_executable",
     "package_prefix",
     "package_share_directory",
     "use_workspace_interfaces",
@@ -51,6 +52,16 @@ def package_executables(package: str, env: Mapping[str, str] | None = None) -> l
     if not lib.is_dir():
         return []
     return sorted(p.name for p in lib.iterdir() if p.is_file() and os.access(p, os.X_OK))
+
+
+def package_of_executable(executable: str, env: Mapping[str, str] | None = None) -> str | None:
+    """Return the one package whose `lib/<package>/` holds `executable` (None: none or several)."""
+    found = [
+        package
+        for package, prefix in sorted(list_packages(env).items())
+        if (prefix / "lib" / package / executable).is_file()
+    ]
+    return found[0] if len(found) == 1 else None
 
 
 def find_executable(package: str, executable: str, env: Mapping[str, str] | None = None) -> Path:

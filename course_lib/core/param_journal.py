@@ -10,7 +10,9 @@ Records (`"t"`): `set` (a course door is about to set a parameter: door, node, n
 old), `failed` (that set was refused), `event` (a /parameter_events message a kernel saw),
 `start` (the course started a node: its `--ros-args`, from where; a terminal's `ros2 run` also
 the pid, as its log goes to the terminal and the node's name is learnt from the graph),
-`named` (a started process's node name, learnt from its log).
+`named` (a started process's node name, learnt from its log), `stopped` (a lesson's new driver
+of the robot stopped another lesson's node: which node, who had started it, who stopped it and
+for which node).
 """
 
 from __future__ import annotations

@@ -4,19 +4,32 @@
 and `remember()` after; in a lab the lab's register is asked (every kernel shares it), outside
 a lab this kernel's own. A node the learner starts in a terminal is not the lessons' business:
 duplicates made on purpose behave as on a real ROS 2 machine.
+
+When a lesson's new driver stops another lesson's node (`keep_one_driver`), a `stopped` record
+in the lab's parameter journal says so, for every kernel: `stopped_by_a_lesson()` reads it when
+a command no longer finds that node.
 """
 
 from __future__ import annotations
 
 import os
 import threading
+from dataclasses import dataclass
 
 from ..core import param_journal, procfs
 from ..processes.children import ChildProcess, OutputLine, owner_tag
 from .client import machine_client
 from .register import NodeRecord, NodeRegister, node_name_from_log
 
-__all__ = ["keep_one_driver", "lessons_nodes", "remember", "set_label", "take_over"]
+__all__ = [
+    "StoppedNode",
+    "keep_one_driver",
+    "lessons_nodes",
+    "remember",
+    "set_label",
+    "stopped_by_a_lesson",
+    "take_over",
+]
 
 _local = NodeRegister()
 _state = {"label": "this notebook"}
@@ -99,11 +112,68 @@ def _stop(record: NodeRecord) -> None:
         _local.stop(record.tag)
 
 
+def _domain(pid: int) -> str | None:
+    """Return the ROS domain of process `pid` (its start environment's), else this one's."""
+    return procfs.environ(pid).get("ROS_DOMAIN_ID") or os.environ.get("ROS_DOMAIN_ID")
+
+
 def keep_one_driver(child: ChildProcess) -> str:
-    """If `child` drives the robot, stop the lessons' other drivers; return what to say."""
+    """If `child` drives the robot, stop the lessons' other drivers; return what to say.
+
+    Each node stopped is recorded in the journal (who stopped it, for which node), so that a
+    lesson that still counts on it can say why it is gone.
+    """
     from ..ros2.api.nodes_and_params import client
     from .drivers import one_driver
 
     if not child.alive:
         return ""
-    return "\n".join(one_driver(client(), child.pid, lessons_nodes(), _stop))
+    names = (node_name_from_log(line.text) for line in child.lines)
+    started = next((n for n in names if n), "") or child.name
+    by, domain = _label(), _domain(child.pid)
+
+    def stop(record: NodeRecord) -> None:
+        _stop(record)
+        param_journal.append(
+            domain,
+            {"t": "stopped", "exe": record.executable, "node": record.node,
+             "started_by": record.label, "by": by, "for": started},
+        )  # fmt: skip
+
+    return "\n".join(one_driver(client(), child.pid, lessons_nodes(), stop))
+
+
+@dataclass(frozen=True)
+class StoppedNode:
+    """A lessons' node another lesson stopped, as the journal records it."""
+
+    node: str
+    executable: str
+    started_by: str  # who had started it (`lesson 7`)
+    by: str  # who stopped it (`lesson 11`)
+    started: str  # the node whose start stopped it (`/descriptor_vel_node`)
+
+
+def _restarts(record: dict[str, object], node: str, executable: object) -> bool:
+    """Return whether a journal record starts `node` (or its executable) again."""
+    kind = record.get("t")
+    return (kind == "named" and record.get("node") == node) or (
+        kind == "start" and record.get("exe") == executable
+    )
+
+
+def stopped_by_a_lesson(node: str, domain: int | str | None) -> StoppedNode | None:
+    """Return the lesson that stopped `node` if the journal's last word on it says so (no
+    start of it since); None when the records cannot tell."""
+    if domain is None:
+        return None
+    last: dict[str, object] | None = None
+    for record in param_journal.read_journal(domain):
+        if record.get("t") == "stopped" and record.get("node") == node:
+            last = record
+        elif last is not None and _restarts(record, node, last.get("exe")):
+            last = None
+    if last is None:
+        return None
+    fields = ("exe", "started_by", "by", "for")
+    return StoppedNode(node, *(str(last.get(f) or "") for f in fields))

@@ -99,8 +99,8 @@ class Lesson:
         self._world = world
         if self.replay is not None:
             self.replay.restart()  # the replay shows the run from the start pose on
-        whose = "your lab's robot, the one every notebook shows," if world.shared else "the robot"
-        print(f"Put {whose} back at its start pose, standing still.")
+        whose = "Your lab's robot, the one every notebook shows," if world.shared else "The robot"
+        print(f"{whose} is back at its start pose, standing still.")
         return world
 
     def _running_lab_world(self) -> Any:
@@ -285,6 +285,7 @@ class Lesson:
         from .checks import run_checks
         from .progress.client import report_progress
 
+        print(f"Checking lesson {self.number}'s nodes, files and robot ...", flush=True)
         result = SelfCheck.of(self.number, run_checks(self))
         report_progress(result)  # on a hub only; never raises, never waits
         if self.replay is not None:

@@ -285,12 +285,19 @@ class World:
             )
         return self.viewer.show(height)
 
-    def stop(self) -> None:
-        """Stop the simulation and its 3D view (in a lab: the lab's, for every notebook)."""
+    def stop(self, *, quiet: bool = False) -> None:
+        """Stop the simulation and its 3D view (in a lab: the lab's, for every notebook).
+
+        Says so in one line, unless `quiet` (the course's own clean-up after a failed start).
+        """
         self.process.stop()
         if self.viewer is not None:
             self.viewer.stop()
         self.detach()
+        if not quiet:
+            whose = "Your lab's simulation" if self.shared else "The simulation"
+            every = ", for every notebook of the lab" if self.shared else ""
+            print(f"{whose} and its 3D view stopped{every}: `lesson.world()` starts them again.")
 
     def detach(self) -> None:
         """Stop listening to the world and let go of it, leaving it running; idempotent."""

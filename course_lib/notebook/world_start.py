@@ -40,7 +40,7 @@ def _own_world(
     try:
         world.wait_for_odom(timeout=timeout)
     except BaseException:
-        world.stop()
+        world.stop(quiet=True)
         raise
     return world
 
@@ -85,7 +85,7 @@ def _attached(session: Any) -> World | None:
         if world.shared:
             world.detach()  # the lab restarts its world itself, and says why
         else:
-            world.stop()  # a crashed simulation: also end its viewer before starting afresh
+            world.stop(quiet=True)  # a crashed simulation: end its viewer too, then start afresh
         return None
     return world
 

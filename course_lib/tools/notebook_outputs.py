@@ -9,27 +9,39 @@ sanitize rules of tests/nbval_sanitize.cfg are applied to text outputs, and cell
 and the settings the notebook was made with did not change (`--all` refreshes those too). A
 cell's stored outputs are found by its cell id, never by its source: two cells may hold the
 same code (lesson 11 runs `travel.check()` twice) and must each keep their own output.
+Each lesson runs as a learner's first run: the exercises' attempt counts kept in `my_files/`
+(yours, if you took the lessons in this clone) are set aside meanwhile and put back after.
 """
 
 from __future__ import annotations
 
 import argparse
 import configparser
+import contextlib
 import copy
 import os
 import re
 import sys
 import time
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 from ..config.course import CourseSettings
 from ..core.live_outputs import scrub_live_outputs
 from ..core.paths import CONFIG_DIR_ENV, NOTEBOOKS_DIR, REPO_ROOT
+from ..lessons.files import LEARNER_DIR
+from ..lessons.skills.attempts import ATTEMPTS_FILE
 from ..lessons.texts import METADATA_KEY, render_cells
 from .testing import TEST_ENV
 
-__all__ = ["clean_notebook", "refresh_notebook", "refresh_notebooks", "sanitize_rules"]
+__all__ = [
+    "clean_notebook",
+    "first_attempts",
+    "refresh_notebook",
+    "refresh_notebooks",
+    "sanitize_rules",
+]
 
 SANITIZE_FILE = REPO_ROOT / "tests" / "nbval_sanitize.cfg"
 IGNORE_TAG = "nbval-ignore-output"
@@ -95,6 +107,24 @@ def clean_notebook(nb: Any, old: Any | None, *, keep_live: bool = True) -> Any:
     return nb
 
 
+@contextlib.contextmanager
+def first_attempts(folder: Path = LEARNER_DIR) -> Iterator[None]:
+    """Run the body with no exercise attempts counted in `folder`; put the counts back after."""
+    attempts = folder / ATTEMPTS_FILE
+    try:
+        kept: bytes | None = attempts.read_bytes()
+    except FileNotFoundError:
+        kept = None
+    attempts.unlink(missing_ok=True)
+    try:
+        yield
+    finally:
+        if kept is None:
+            attempts.unlink(missing_ok=True)
+        else:
+            attempts.write_bytes(kept)
+
+
 def refresh_notebook(
     path: Path, settings: CourseSettings, *, keep_live: bool = True, timeout: int = 180
 ) -> float:
@@ -116,7 +146,8 @@ def refresh_notebook(
         resources={"metadata": {"path": str(path.parent)}},
         record_timing=False,
     )
-    client.execute()
+    with first_attempts():
+        client.execute()
     clean_notebook(nb, old, keep_live=keep_live)
     nbformat.validate(nb)  # never store a notebook JupyterLab would flag as invalid
     text = nbformat.writes(nb) + "\n"

@@ -1,7 +1,10 @@
 """A seeded random walk through the lessons in one lab, each left running.
 
 `WALK_SEED` and `WALK_STEPS` replay a walk (its seed is printed, and every step); the soak
-(`make soak`, `WALK_SOAK=1`) walks at least 100 steps and prints what it found.
+(`make soak`, `WALK_SOAK=1`) walks at least 100 steps at a person's pace (reading between cells
+and steps for seconds to minutes, reading lessons cell by cell, making the catalogue's
+mistakes; `WALK_PACE=ci` reads for seconds, `none` walks at machine speed) and prints what it
+found.
 """
 
 from __future__ import annotations
@@ -11,6 +14,7 @@ from pathlib import Path
 
 import pytest
 from lesson_checks import LESSONS  # noqa: F401 (the lab_page fixture copies them)
+from pace import PERSON_PACE, pace_from_env
 from walk import Walker, walk_settings
 
 pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
@@ -35,7 +39,7 @@ def test_a_short_random_walk(lab_page, artifacts: Path) -> None:
 @pytest.mark.timeout(0)  # as long as WALK_STEPS takes; run by hand, never in CI
 def test_soak_random_walk(lab_page, artifacts: Path) -> None:
     seed, steps = walk_settings(SOAK_STEPS)
-    walker = Walker(lab_page, artifacts)
+    walker = Walker(lab_page, artifacts, pace=pace_from_env(PERSON_PACE))
     try:
         walker.random_walk(seed, steps)
     finally:

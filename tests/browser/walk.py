@@ -19,6 +19,7 @@ from lab_graph import graph_problems
 from lab_nodes import hosts_of, node_processes
 from lab_ui import LabPage
 from lesson_checks import LESSONS, PROBES, cell_problems, lesson_number, run_problems
+from pace import MACHINE_PACE, MISTAKES, Pace
 from terminal import Terminal
 
 __all__ = ["Step", "Walker", "walk_settings"]
@@ -85,6 +86,8 @@ class Walker:
     opened: list[str] = field(default_factory=list)
     defects: list[str] = field(default_factory=list)
     steps: int = 0
+    pace: Pace = MACHINE_PACE  # how long the learner reads between cells and steps
+    reading: random.Random = field(default_factory=lambda: random.Random(0))  # reading times
     _at: str = "start"  # the step running, to name where a defect was found
     _nodes: list[str] = field(default_factory=list)  # the lab's node processes, last seen
 
@@ -125,6 +128,41 @@ class Walker:
         cell = self.ui.run_cell(self.ui.cell_with(source))
         self._record(cell_problems(name, cell))
 
+    def read_through(self, name: str) -> None:
+        """Run a lesson cell by cell from the top, reading after each (opened first if need be)."""
+        first = name not in self.opened
+        if first:
+            self.ui.open(name)
+            self.opened.append(name)
+        else:
+            self.ui.show(name)
+        for index in range(len(self.ui.cells())):
+            if not self.ui.cells()[index].source.strip():  # Shift+Enter on the last cell adds one
+                continue
+            cell = self.ui.run_cell(self.ui.cells()[index])
+            self._record(cell_problems(name, cell))
+            self.read(cell.source)
+        if first and lesson_number(name) in PROBES:  # as `open` adds it
+            self.ui.add_cell(PROBES[lesson_number(name)][0])
+        self._check_run(name)
+
+    def mistake(self, name: str, code: str) -> None:
+        """Add a mistaken cell to an open lesson and run it: a hint, never an error."""
+        self.ui.show(name)
+        cell = self.ui.add_cell(code)
+        self._record(cell_problems(name, cell))
+        expected = next(m.shows for m in MISTAKES if m.code == code)
+        if "Hint: " not in cell.text or expected not in cell.text:
+            self._record([f"{name}: `{code}` should show a hint with {expected!r}: {cell.text}"])
+        self.read(code)
+
+    def read(self, source: str = "") -> None:
+        """Read for as long as the pace draws after the cell `source` (a person between cells)."""
+        pause = self.pace.pause_s(self.reading, source)
+        if pause >= 5.0:
+            self.log(f"  (reads {pause:.0f} s)")
+        time.sleep(pause)
+
     def check_graph(self) -> None:
         """Check the lab's graph from a lab terminal: one /mujoco and one /clock publisher once
         a lesson started the world, none before."""
@@ -149,8 +187,8 @@ class Walker:
         try:
             left = self.ui.dismiss_dialogs()  # what an earlier step left open
             self._record([f"a dialog was left open: {text}" for text in left])
-            if step.kind == "rerun_cell":
-                self.rerun_cell(step.lesson, step.detail)
+            if step.kind in ("rerun_cell", "mistake"):
+                getattr(self, step.kind)(step.lesson, step.detail)
             elif step.kind == "check_graph":
                 self.check_graph()
             else:
@@ -218,7 +256,13 @@ class Walker:
         if not self.opened or (closed and rng.random() < OPEN_CHANCE):
             return Step("open", rng.choice(closed))
         name = rng.choice(self.opened)
-        kind = rng.choice(["run_all", "restart", "first_then_all", "rerun_cell", "rerun_cell"])
+        kinds = ["run_all", "restart", "first_then_all", "rerun_cell", "rerun_cell"]
+        mistakes = [m.code for m in MISTAKES if m.lesson == lesson_number(name)]
+        if self.pace is not MACHINE_PACE:  # a person reads through lessons and makes mistakes
+            kinds += ["read_through", *(["mistake"] if mistakes else [])]
+        kind = rng.choice(kinds)
+        if kind == "mistake":
+            return Step(kind, name, rng.choice(mistakes))
         if kind != "rerun_cell":
             return Step(kind, name)
         sources = [source for source in RERUNNABLE if source in _sources(name)]
@@ -233,12 +277,15 @@ class Walker:
 
     def random_walk(self, seed: int, steps: int) -> None:
         """Walk `steps` random steps from `seed`, then check the graph from a terminal."""
-        self.log(f"walk seed: {seed} (replay: WALK_SEED={seed} WALK_STEPS={steps})")
+        pace = "" if self.pace is MACHINE_PACE else f" WALK_PACE={self.pace.name}"
+        self.log(f"walk seed: {seed} (replay: WALK_SEED={seed} WALK_STEPS={steps}{pace})")
         rng = random.Random(seed)
+        self.reading = random.Random(seed + 1)
         for _ in range(steps):
             if not self.can_go_on():
                 return
             self.do(self.choose(rng))
+            self.read()
         self.do(Step("check_graph", "the lab"))
 
 

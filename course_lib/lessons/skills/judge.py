@@ -10,6 +10,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from ...config.trip import VELOCITY_MAX_MPS
+from .verdict_texts import HINTS, MESSAGES
+
 __all__ = [
     "HINTS",
     "DriveAttempt",
@@ -20,105 +23,6 @@ __all__ = [
     "judge_drive",
     "judge_startup",
 ]
-
-# kind -> hints, from general to specific (attempt 1, 2, 3 and later)
-HINTS: dict[str, tuple[str, str, str]] = {
-    "no_motion": (
-        "is velocity set on the node that drives the robot? `%ros2 param get {node} velocity`",
-        "did `param set` answer 'Set parameter successful'? `velocity` is a double: a whole "
-        "number such as 1 is refused ('Wrong parameter type'); write it with a decimal point.",
-        "velocity = distance ÷ time = {distance_m:g} ÷ {time_s:g}, written as a double, set on "
-        "{node} before you run the check.",
-    ),
-    "wrong_node": (
-        "which node drives the robot? `%ros2 topic info /cmd_vel --verbose` names the publisher.",
-        "{elsewhere} holds velocity {elsewhere_value:g}, but the robot follows {node}.",
-        "set the same value on {node}: `%ros2 param set {node} velocity <value>`.",
-    ),
-    "too_short": (
-        "distance = velocity × time: the check measures {time_s:g} s of simulated time.",
-        "it drove {measured_m:.2f} m in {time_s:g} s, so at {measured_mps:.2f} m/s; "
-        "{distance_m:g} m in the same time needs a higher velocity.",
-        "velocity = {distance_m:g} ÷ {time_s:g} (m/s), set as a double on {node}.",
-    ),
-    "too_far": (
-        "distance = velocity × time: the check measures {time_s:g} s of simulated time.",
-        "it drove {measured_m:.2f} m in {time_s:g} s, so at {measured_mps:.2f} m/s; "
-        "{distance_m:g} m in the same time needs a lower velocity.",
-        "velocity = {distance_m:g} ÷ {time_s:g} (m/s), set as a double on {node}.",
-    ),
-    "not_started": (
-        "the check judges the node you start after arming it: start {node} again.",
-        "stop the running node first, then start it with the file that holds the new value.",
-        "{how}",
-    ),
-    "integer": (
-        "the node stopped at start-up: read its last line (InvalidParameterTypeException).",
-        "`{param}` is declared as a double; `{written}` is read as an integer, and ROS does not "
-        "convert it.",
-        "write the value with a decimal point, `{target:.2f}`, in {source}.",
-    ),
-    "missing_file": (
-        "the node's last line says why it ended: rcl could not open the params file.",
-        "a relative path after `--params-file` starts in the folder the node runs in (the "
-        "notebook's): check the file's name and folder, for example with `%ls my_files`.",
-        "{how}",
-    ),
-    "unreadable": (
-        "the node's last line says why it ended: rcl could not parse the params file (it "
-        "names the line).",
-        "look at {source} with `lesson.show_file(...)`: a bracket or quote left open, a tab, "
-        "or a line indented differently from its neighbours.",
-        "the file holds `{node}:`, under it `  ros__parameters:`, under that "
-        "`    {param}: {target:.2f}`.",
-    ),
-    "no_file": (
-        "the value must be there from the node's first second: give it to the node at start-up.",
-        "`ros2 run` takes a params file after `--ros-args`: `--params-file <file>`.",
-        "{how}",
-    ),
-    "wrong_key": (
-        "the node started with {param} {first:g}: ROS applied nothing from {source}, and "
-        "says nothing about it.",
-        "the file's top key `{key}` names no node that runs; ROS applies a section only to the "
-        "node it names.",
-        "make the top key `{node}:` (or `/**:` for every node).",
-    ),
-    "no_parameter": (
-        "the node started with velocity {first:g}: the launch file gave it no velocity.",
-        "a Node action takes its values as `parameters=[{{'name': value}}]`.",
-        "add `parameters=[{{'velocity': {target:.2f}}}]` to the Node of {source}.",
-    ),
-    "after_window": (
-        "{measured_text} only after the node's first seconds: the value came later.",
-        "the node started with {param} {first:g}; a value set after the start is not the "
-        "start-up value. Put it in {source} before the start.",
-        "{how}",
-    ),
-    "wrong_value": (
-        "{measured_text}; the task wants {param} {target:g}.",
-        "look at the value {source} gives: `lesson.show_file(...)`.",
-        "write `{param}: {target:g}` (a double) in {source}, then start the node again.",
-    ),
-}
-
-_MESSAGES = {
-    "no_motion": "the robot did not move.",
-    "wrong_node": "the robot did not drive the distance.",
-    "too_short": "the robot drove {measured_m:.2f} m in {time_s:g} s, short of {distance_m:g} m "
-    "(± {tolerance_cm:g} cm).",
-    "too_far": "the robot drove {measured_m:.2f} m in {time_s:g} s, past {distance_m:g} m "
-    "(± {tolerance_cm:g} cm).",
-    "not_started": "no {executable} was started by this lesson since the exercise was armed.",
-    "integer": "{node} did not start: its {param} is an integer.",
-    "missing_file": "{node} did not start: there is no file {source}.",
-    "unreadable": "{node} did not start: ROS cannot read {source}.",
-    "no_file": "{node} started without a params file.",
-    "wrong_key": "{node} started with {param} {first:g}: the params file did not reach it.",
-    "no_parameter": "{node} started with {param} {first:g}: the launch file sets none.",
-    "after_window": "{node} started with {param} {first:g}, and got {target:g} only later.",
-    "wrong_value": "{measured_text}, not {target:g} {unit} (± {tolerance:g}).",
-}
 
 
 @dataclass(frozen=True)
@@ -146,7 +50,7 @@ def hint_for(kind: str, number: int, words: Mapping[str, Any]) -> str:
 
 
 def _failed(kind: str, number: int, words: Mapping[str, Any], show_hints: bool) -> Verdict:
-    message = f"Attempt {number}: not yet. " + _MESSAGES[kind].format_map(_Words(words))
+    message = f"Attempt {number}: not yet. " + MESSAGES[kind].format_map(_Words(words))
     return Verdict(False, message, hint_for(kind, number, words) if show_hints else "", kind)
 
 
@@ -158,6 +62,29 @@ class DriveAttempt:
     velocity: float | None  # the graded node's velocity now
     elsewhere: str = ""  # another node that holds the wanted velocity (the wrong node)
     elsewhere_value: float = 0.0
+    refused: str = ""  # the learner's last velocity that `param set` refused, as typed
+
+
+def _refused_text(attempt: DriveAttempt, node: str) -> str:
+    """Say why a velocity was refused: the learner's own value if known, never one above the
+    top speed as the fix."""
+    top = f"a speed in m/s with a decimal point, at most {VELOCITY_MAX_MPS:g}"
+    if not attempt.refused:
+        return (
+            "`velocity` is a double: a whole number is read as an integer and refused "
+            f"('Wrong parameter type'); write {top}."
+        )
+    kept = f"{attempt.velocity:g}" if attempt.velocity is not None else "its old value"
+    read = "an integer" if attempt.refused.lstrip("+-").isdigit() else "text"
+    return (
+        f"`{attempt.refused}` is read as {read} and `velocity` is a double, so ROS refused "
+        f"it ('Wrong parameter type') and {node} kept velocity {kept}; write {top}."
+    )
+
+
+def _over_top_speed(attempt: DriveAttempt) -> bool:
+    """Return whether the node holds a velocity the robot cannot reach."""
+    return attempt.velocity is not None and abs(attempt.velocity) > VELOCITY_MAX_MPS + 1e-9
 
 
 def judge_drive(
@@ -180,6 +107,9 @@ def judge_drive(
         "measured_mps": attempt.distance_m / time_s,
         "elsewhere": attempt.elsewhere,
         "elsewhere_value": attempt.elsewhere_value,
+        "velocity": attempt.velocity,
+        "top": f"{VELOCITY_MAX_MPS:g}",
+        "refused_text": _refused_text(attempt, node),
     }
     error = attempt.distance_m - distance_m
     if abs(error) <= tolerance_m:
@@ -190,6 +120,8 @@ def judge_drive(
         )
     if attempt.elsewhere:
         return _failed("wrong_node", number, words, show_hints)
+    if _over_top_speed(attempt):
+        return _failed("over_top_speed", number, words, show_hints)
     if attempt.distance_m < 0.01:
         return _failed("no_motion", number, words, show_hints)
     return _failed("too_short" if error < 0 else "too_far", number, words, show_hints)
@@ -206,9 +138,9 @@ class StartupAttempt:
 
     started: bool  # a node was started by this lesson since the exercise was armed
     source: str = ""  # the file meant to give the value (params or launch file); "" for none
-    problem: str = ""  # what reading that file found (see measure.FileValue)
+    problem: str = ""  # what reading that file found (see file_values.FileValue)
     written: str = ""  # the value as the file writes it (for the integer hint)
-    key: str = ""  # the params file's top key
+    key: str = ""  # the params file's top key, or the name its problem is about (FileValue)
     first: float = 0.0
     start: float = 0.0
     now: float = 0.0
@@ -229,6 +161,19 @@ class StartupTask:
     tolerance: float
     how: str  # the most specific hint for starting the node right (without the value)
     needs_file: bool  # the node itself must be given a params file (lessons 9 and 11)
+
+
+# what stopped the node at start-up (rcl or rclpy refused its file), see file_values.FileValue
+_ENDED = (
+    "integer",
+    "missing_file",
+    "unreadable",
+    "no_ros_parameters",
+    "empty_section",
+    "no_node_key",
+)
+# a file that reached the node without the value: a launch file's, or a params file's
+_GAVE_NOTHING = ("wrong_key", "no_parameter", "undeclared", "nested", "file_sets_none")
 
 
 def judge_startup(
@@ -254,11 +199,11 @@ def judge_startup(
     right_first = abs(attempt.first - task.target) < 1e-6
     if not attempt.started:
         return _failed("not_started", number, words, show_hints)
-    if attempt.problem in ("integer", "missing_file", "unreadable"):  # it ended at start-up
+    if attempt.problem in _ENDED:  # it ended at start-up
         return _failed(attempt.problem, number, words, show_hints)
     if task.needs_file and not attempt.source:
         return _failed("no_file", number, words, show_hints)
-    if attempt.problem in ("wrong_key", "no_parameter") and not right_first:
+    if attempt.problem in _GAVE_NOTHING and not right_first:
         return _failed(attempt.problem, number, words, show_hints)
     if attempt.elsewhere and abs(attempt.now - task.target) > task.tolerance:
         return _failed("wrong_node", number, words, show_hints)

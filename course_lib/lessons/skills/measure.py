@@ -1,10 +1,9 @@
-"""What the skill exercises measure: the robot on /odom, the node's log lines, its files.
+"""What the skill exercises measure: the robot on /odom, the node's log lines, other nodes.
 
 Everything comes from the real thing: /odom readings recorded from the moment an exercise is
 armed (with the wall time they arrived, to line them up with a node's log lines), the lines the
-learner's node printed (param_vel_node logs its velocity on every 0.1 s tick), the command line
-it was started with, the params or launch file it was given, and the parameters of the nodes
-running now.
+learner's node printed (param_vel_node logs its velocity on every 0.1 s tick), and the
+parameters of the nodes running now. What the node's files give it is `file_values`.
 """
 
 from __future__ import annotations
@@ -17,11 +16,7 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable
-from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
-
-import yaml
 
 from ...core.errors import CourseError
 
@@ -29,14 +24,10 @@ _log = logging.getLogger(__name__)
 
 __all__ = [
     "MOVING_MPS",
-    "FileValue",
     "OdomTrace",
     "distance_m",
     "first_tick",
-    "launch_file_value",
     "node_holding",
-    "params_file_of",
-    "params_file_value",
     "steady_odom",
 ]
 
@@ -47,6 +38,9 @@ _STEADY_S = 0.2  # simulated seconds between the readings compared
 _SPEED_TOLERANCE = 0.002  # m/s
 _TICK = re.compile(r"Velocity parameter is: (-?[0-9.]+)")
 MOVING_MPS = 0.01  # m/s: a robot slower than this stands still
+_RECENT = 30000  # /odom readings kept in full: 10 minutes at 50 Hz
+_ARCHIVED = 20000  # older ones, thinned: over 5 hours of a steady robot
+_ARCHIVE_EVERY_S = 1.0  # simulated s: a steady robot's older readings, one a second
 
 
 def distance_m(a: Any, b: Any) -> float:
@@ -79,25 +73,44 @@ def steady_odom(world: Any, *, still_wait_s: float = 1.0) -> Any:
 
 
 class OdomTrace:
-    """Every /odom reading since `attach`, with the wall time it arrived (about 10 minutes)."""
+    """Every /odom reading since `attach`, with the wall time it arrived.
+
+    The last 10 minutes in full; older readings thinned to each change of speed and one a
+    simulated second (hours of them): a learner who reads for an hour between starting a node
+    and running the check is judged on the node's first seconds all the same.
+    """
 
     def __init__(self) -> None:
-        self.readings: deque[tuple[float, Any]] = deque(maxlen=30000)
+        self.readings: deque[tuple[float, Any]] = deque(maxlen=_RECENT)
+        self.archive: deque[tuple[float, Any]] = deque(maxlen=_ARCHIVED)
         self._world: Any = None
         self._received = 0  # readings appended since attach, those dropped off the deque too
         self._cond = threading.Condition()
 
     def _on(self, reading: Any) -> None:
         with self._cond:
+            if len(self.readings) == self.readings.maxlen:
+                self._archive(self.readings[0])  # about to drop off the full record
             self.readings.append((time.time(), reading))
             self._received += 1
             self._cond.notify_all()
+
+    def _archive(self, item: tuple[float, Any]) -> None:
+        """Keep an old reading if the speed changed since the last one kept, or a second passed."""
+        if self.archive:
+            last = self.archive[-1][1]
+            reading = item[1]
+            same = abs(reading.linear_mps - last.linear_mps) < _SPEED_TOLERANCE
+            if same and reading.time_s - last.time_s < _ARCHIVE_EVERY_S:
+                return
+        self.archive.append(item)
 
     def attach(self, world: Any) -> None:
         """Record `world`'s /odom from now on (once: a second attach moves the recording)."""
         self.detach()
         with self._cond:
             self.readings.clear()
+            self.archive.clear()
             self._received = 0
         self._world = world
         world.add_odom_listener(self._on)
@@ -130,12 +143,14 @@ class OdomTrace:
         for one up to wall time `until`; None if none came."""
         seen = 0  # readings tested so far, counted since attach (the oldest drop off the deque)
         with self._cond:
+            older = list(self.archive)  # tested first, once: the record before the full one
             while True:
                 fresh = min(self._received - seen, len(self.readings))  # the newest, untested
                 newest_first = itertools.islice(reversed(self.readings), fresh)
-                for wall_time, reading in reversed(list(newest_first)):
+                for wall_time, reading in [*older, *reversed(list(newest_first))]:
                     if test(wall_time, reading):
                         return reading
+                older = []
                 seen = self._received
                 left = until - time.time()
                 if left <= 0:
@@ -143,10 +158,19 @@ class OdomTrace:
                 self._cond.wait(min(left, 0.2))
 
     def speed(self, start_s: float, end_s: float) -> float:
-        """Return the mean forward speed between simulated times `start_s` and `end_s` (m/s)."""
+        """Return the mean forward speed between simulated times `start_s` and `end_s` (m/s).
+
+        Where the thinned record has fewer than two readings inside, the last one before the
+        window counts too (the speed held until the next one kept), if the record covers it.
+        """
         with self._cond:
-            inside = [r for _wall, r in self.readings if start_s <= r.time_s <= end_s]
+            every = [r for _wall, r in itertools.chain(self.archive, self.readings)]
+        inside = [r for r in every if start_s <= r.time_s <= end_s]
+        before = [r for r in every if r.time_s < start_s][-1:]
         if len(inside) < 2:
+            covered = any(r.time_s >= end_s for r in every)
+            inside = [*before, *inside] if before and covered else []
+        if not inside:
             return 0.0
         return sum(r.linear_mps for r in inside) / len(inside)
 
@@ -158,69 +182,6 @@ def first_tick(lines: list[Any]) -> tuple[float, float] | None:
         if found:
             return line.time, float(found.group(1))
     return None
-
-
-def params_file_of(argv: list[str], cwd: Path) -> Path | None:
-    """Return the params file a node's command line passes (`--params-file FILE`), if any."""
-    for flag, value in itertools.pairwise(argv):
-        if flag == "--params-file":
-            path = Path(value)
-            return path if path.is_absolute() else cwd / path
-    return None
-
-
-@dataclass(frozen=True)
-class FileValue:
-    """What a file gives the node: its velocity, or why it gives none."""
-
-    value: float | None = None
-    problem: str = ""  # "", integer, wrong_key, no_parameter, missing_file, unreadable
-    written: str = ""
-    key: str = ""
-
-
-def _typed(value: Any) -> FileValue:
-    if value is None:
-        return FileValue(problem="no_parameter")
-    if isinstance(value, int) and not isinstance(value, bool):
-        return FileValue(problem="integer", written=str(value))
-    if isinstance(value, float):
-        return FileValue(value=value)
-    return FileValue(problem="integer", written=repr(value))  # a string, a list: no double
-
-
-def params_file_value(path: Path, node: str, param: str = "velocity") -> FileValue:
-    """Return the `param` a params file gives `node` (as rcl reads it: its key must match)."""
-    try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        return FileValue(problem="missing_file")
-    except (OSError, yaml.YAMLError):
-        return FileValue(problem="unreadable")
-    if not isinstance(data, dict) or not data:
-        return FileValue(problem="wrong_key", key="(none)")
-    names = {node, node.lstrip("/"), "/**", "**"}
-    section = next((v for k, v in data.items() if k in names), None)
-    if section is None:
-        return FileValue(problem="wrong_key", key=str(next(iter(data))))
-    params = section.get("ros__parameters", {}) if isinstance(section, dict) else {}
-    return _typed(params.get(param) if isinstance(params, dict) else None)
-
-
-def launch_file_value(path: Path, executable: str) -> FileValue:
-    """Return the velocity a launch file gives `executable`'s node (read, not run)."""
-    from ...launch.command.dry_run import dry_run
-
-    try:
-        report = dry_run(str(path))
-    except Exception as error:  # the learner's own code: anything; the launch shows it too
-        _log.info("launch file %s could not be planned: %r", path, error)
-        return FileValue(problem="no_parameter")
-    for plan in report.nodes:
-        if Path(plan.cmd[0]).name == executable:
-            found = plan.values.get("velocity")
-            return _typed(found[0] if found else None)
-    return FileValue(problem="no_parameter")
 
 
 def node_holding(target: float, graded: str, tolerance: float) -> tuple[str, float]:

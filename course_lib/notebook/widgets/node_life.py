@@ -181,26 +181,17 @@ def _started(records: list[dict[str, Any]], node: str) -> dict[str, Any] | None:
     return found
 
 
-def _package_of(executable: str, env: Any) -> str | None:
-    """Return the one package with `executable` (None if none or several have it)."""
-    from ...core import ament
-
-    packages = [
-        p for p in ament.list_packages(env) if executable in ament.package_executables(p, env)
-    ]
-    return packages[0] if len(packages) == 1 else None
-
-
 def start_command(session: Any, node: str) -> str | None:
     """Return the `%ros2 run` line that started `node` last (from the parameter journal), or
     None if the course did not start it that way (a launch file, a terminal, unknown)."""
+    from ...core import ament
     from ...core.param_journal import read_journal
 
     record = _started(read_journal(session.domain_id), node)
     if record is None or record.get("door") in ("launch", "terminal"):
         return None
     executable = str(record.get("exe") or "")
-    package = _package_of(executable, session.env) if executable else None
+    package = ament.package_of_executable(executable, session.env) if executable else None
     if package is None:
         return None
     args = [str(a) for a in record.get("args") or []]

@@ -1,5 +1,12 @@
 """The skill exercises against real nodes and the real simulation: a right answer passes, each
-wrong one fails with its own hint, and the hints grow more specific with each attempt."""
+wrong one fails with its own hint, and the hints grow more specific with each attempt.
+
+Each verdict names what the learner wrote, the real cause and one next step: a velocity past
+the robot's top speed (the wheels' 8 rad/s × 0.033 m) says the robot drove at its top speed; a
+refused integer is named as typed; a misspelt key in a params file is named with its rename; a
+file without `ros__parameters:` (rcl stops the node) gets a params file's words, never a launch
+file's.
+"""
 
 from __future__ import annotations
 
@@ -204,3 +211,81 @@ def test_lesson11_saved_panel(world_lesson: Lesson, stop_nodes: None) -> None:
     lesson.run(*node, "--params-file", str(path.with_name("nope.yaml")))
     missing = saved.check()  # the node ended at start-up: the file is named
     assert missing.kind == "missing_file" and "there is no file" in missing.message, missing
+
+
+# Issue 59: each verdict names what the learner wrote, the real cause and one next step.
+def test_lesson7_a_velocity_past_top_speed(
+    world_lesson: Lesson, stop_nodes: None, tmp_path: Path
+) -> None:
+    from course_lib.lessons.skills.exercises import DriveExercise
+
+    lesson = _lesson(7, world_lesson)
+    lesson.learner_dir = tmp_path  # attempts counted from 1
+    lesson.run("parameter_tests", "param_vel")
+    drive = DriveExercise(lesson)
+    drive.arm()
+    assert api.param_set(NODE, "velocity", 0.45).successful  # the distance, typed as a speed
+    verdict = drive.check()
+    assert verdict.kind == "over_top_speed", verdict
+    driven = float(verdict.message.split("drove ")[1].split(" m")[0])
+    assert 0.74 <= driven <= 0.82, verdict.message  # 0.26 m/s for 3 s, not 0.45 m/s
+    assert verdict.message.endswith(
+        "not 0.45 m (± 3 cm): /param_vel_node holds velocity 0.45, but the robot tops out at "
+        "0.26 m/s, forwards or backwards, and drove at that. The answer's velocity is "
+        "distance ÷ time."
+    )
+    assert "distance = velocity × time" not in verdict.hint
+
+
+def test_lesson7_a_refused_integer_is_named_as_typed(
+    world_lesson: Lesson, stop_nodes: None, tmp_path: Path
+) -> None:
+    from course_lib.lessons.skills.exercises import DriveExercise
+
+    lesson = _lesson(7, world_lesson)
+    lesson.learner_dir = tmp_path  # attempts counted from 1
+    lesson.run("parameter_tests", "param_vel")
+    drive = DriveExercise(lesson)
+    drive.arm()
+    for _attempt in range(2):  # the same mistake twice: the second hint is the specific one
+        assert not api.param_set(NODE, "velocity", 1).successful
+        verdict = drive.check()
+    assert verdict.kind == "no_motion", verdict
+    assert "`1` is read as an integer" in verdict.hint, verdict.hint
+    assert "1.0" not in verdict.hint  # never a fix above the robot's top speed
+
+
+def test_lesson9_a_misspelt_key_and_a_missing_level(
+    world_lesson: Lesson, stop_nodes: None, tmp_path: Path
+) -> None:
+    from course_lib.lessons.skills.exercises import ParamsFileExercise
+
+    lesson = _lesson(9, world_lesson)
+    lesson.learner_dir = tmp_path  # attempts counted from 1
+    startup = ParamsFileExercise(lesson)
+    startup.arm()
+    verdicts = {}
+    files = {
+        "undeclared": "/param_vel_node:\n  ros__parameters:\n    velocty: 0.12\n",
+        "no_ros_parameters": "/param_vel_node:\n  velocity: 0.12\n",  # rcl stops the node
+    }
+    for case, text in files.items():
+        path = Path(lesson.learner_dir) / "start_fast.yaml"
+        path.write_text(text, encoding="utf-8")
+        lesson.run("parameter_tests", "param_vel", "--ros-args", "--params-file", str(path))
+        verdicts[case] = startup.check()
+    misspelt, unlevelled = verdicts["undeclared"], verdicts["no_ros_parameters"]
+    assert misspelt.kind == "undeclared", misspelt
+    assert misspelt.message.endswith(
+        "start_fast.yaml sets `velocty: 0.12`, which /param_vel_node does not declare: ROS "
+        "keeps it silently as an undeclared override, so /param_vel_node started with "
+        "velocity 0."
+    )
+    assert misspelt.hint.startswith(f"rename `velocty` to `velocity` in {path}: ")
+    assert unlevelled.kind == "no_ros_parameters", unlevelled
+    assert unlevelled.message.endswith(
+        f"/param_vel_node did not start: in {path}, `velocity` sits right under "
+        "`/param_vel_node:`, with no `ros__parameters:` between them."
+    )
+    for verdict in verdicts.values():
+        assert "launch" not in verdict.message + verdict.hint, verdict

@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from course_lib.notebook import hints
+from course_lib.notebook.value_hints import missing_name_hint
 
 GOLDEN = Path(__file__).resolve().parents[2] / "golden" / "ros2"
 CASES = {c["case"]: c for c in json.loads((GOLDEN / "cases.json").read_text())}
@@ -158,9 +159,9 @@ def test_disabled_hints_ask_nothing() -> None:
 
 
 def test_a_missing_node_with_none_running_says_start_it() -> None:
-    text = hints._missing_name_hint("node", "/param_vel_node", [], "`%ros2 node list`")
+    text = missing_name_hint("node", "/param_vel_node", [], "`%ros2 node list`")
     assert text == "no node is running, so there is no '/param_vel_node': start the node first."
-    text = hints._missing_name_hint("parameter", "x", [], "`%ros2 param list /n`")
+    text = missing_name_hint("parameter", "x", [], "`%ros2 param list /n`")
     assert "none with a close name" in text
 
 
@@ -195,3 +196,139 @@ def test_a_params_file_rcl_cannot_parse_or_open_is_named(tmp_path: Path) -> None
         "the folder the node runs in): check its name and folder, for example with "
         "`%ls my_files`."
     )
+
+
+# --- issue 59: the real cause, in the learner's words ---------------------------------------
+SET_OK = "Set parameter successful\n"  # Jazzy's words (golden case param_set_success)
+
+
+@pytest.mark.parametrize(
+    ("value", "way"), [("5.0", "forwards"), ("0.27", "forwards"), ("-0.3", "backwards")]
+)
+def test_a_velocity_past_top_speed_is_accepted_then_explained(value: str, way: str) -> None:
+    words = ["param", "set", "/param_vel_node", "velocity", value]
+    assert hints.top_speed_hint(words, SET_OK) == (
+        f"/param_vel_node now holds velocity {value} (its velocity has no range), but the "
+        f"robot tops out at 0.26 m/s: it drives {way} at 0.26 m/s."
+    )
+
+
+@pytest.mark.parametrize(
+    "words",
+    [
+        ["param", "set", "/param_vel_node", "velocity", "0.26"],
+        ["param", "set", "/param_vel_node", "velocity", "-0.2"],
+        ["param", "set", "/descriptor_vel_node", "travel_time", "5.0"],
+        ["param", "set", "/param_types_node", "max_speed", "1.0"],
+    ],
+)
+def test_a_reachable_velocity_or_another_parameter_has_no_top_speed_hint(
+    words: list[str],
+) -> None:
+    assert hints.top_speed_hint(words, SET_OK) is None
+
+
+def test_a_successful_set_asks_nothing_of_the_graph() -> None:
+    argv = ["param", "set", "/param_vel_node", "velocity", "5.0"]
+    text = hints.command_hint(argv, SET_OK, "", lambda: pytest.fail("asked"))
+    assert text is not None and "tops out at 0.26 m/s" in text
+    argv[-1] = "0.2"
+    assert hints.command_hint(argv, SET_OK, "", lambda: pytest.fail("asked")) is None
+
+
+@pytest.mark.parametrize(
+    ("tail", "expected"),
+    [
+        (["0.15", "m/s"], "`%ros2 param set /param_vel_node velocity 0.15` (velocity is in m/s)."),
+        (["0.15", "M/S"], "`%ros2 param set /param_vel_node velocity 0.15` (velocity is in m/s)."),
+        (["1", "m/s"], "`%ros2 param set /param_vel_node velocity 1.0` (velocity is in m/s; "
+         "the robot tops out at 0.26 m/s)."),
+    ],
+)  # fmt: skip
+def test_a_unit_after_the_value_says_parameters_carry_no_unit(
+    tail: list[str], expected: str
+) -> None:
+    argv = ["param", "set", "/param_vel_node", "velocity", *tail]
+    stderr = "usage: ...\nros2: error: unrecognized arguments: m/s\n"
+    text = hints.command_hint(argv, "", stderr, lambda: pytest.fail("asked"))
+    assert text == "parameters carry no unit: " + expected
+    assert "quotes" not in (text or "")
+
+
+def test_a_unit_on_another_parameter_and_a_split_array() -> None:
+    words = ["param", "set", "/descriptor_vel_node", "travel_time", "5", "s"]
+    assert hints.unit_hint(words) == (
+        "parameters carry no unit: `%ros2 param set /descriptor_vel_node travel_time 5.0` "
+        "(travel_time is in s)."
+    )
+    assert hints.unit_hint(["param", "set", "/n", "gains", "[1.0,", "2.0]"]) is None
+    assert hints.unit_hint(["param", "set", "/n", "name", "0.1", "fast"]) is None
+
+
+@pytest.mark.parametrize("value", ["0.15 m/s", "0.15m/s"])
+def test_a_quoted_number_with_a_unit_proposes_the_learners_number(value: str) -> None:
+    text = hints.type_hint(_reason("param_set_wrong_type"), "velocity", value)
+    assert text == (
+        f"'velocity' is a double (a number with a decimal point); `{value}` was read as text "
+        "and ROS does not convert it: write `0.15` (parameters carry no unit; velocity is in "
+        "m/s)."
+    )
+    exponent = hints.type_hint(_reason("param_set_wrong_type"), "velocity", "1e-3")
+    assert exponent is not None and exponent.endswith("write `0.001`.")  # no unit there
+
+
+def test_a_number_with_a_unit_for_an_integer_proposes_the_whole_number() -> None:
+    reason = "Wrong parameter type, expected 'Type.INTEGER' got 'Type.STRING'"
+    assert hints.type_hint(reason, "count", "3 s") == (
+        "'count' is an integer; `3 s` was read as text and ROS does not convert it: write `3` "
+        "(parameters carry no unit)."
+    )
+
+
+EXECUTABLES = {
+    "parameter_tests": ["param_vel"],
+    "parameter_descriptors": ["descriptor_vel"],
+    "turtlesim": ["turtle_teleop_key", "turtlesim_node"],
+}
+
+
+def _run_hint(stderr: str, argv: list[str]) -> str | None:
+    words = hints.run_words(argv)
+    assert words is not None
+    return hints.run_hint(stderr, words, sorted(EXECUTABLES), lambda p: EXECUTABLES.get(p, []))
+
+
+def test_a_wrong_executable_names_the_closest_and_the_command() -> None:
+    stderr = CASES["run_missing_executable"]["stderr"]  # Jazzy: "No executable found"
+    argv = ["run", "parameter_tests", "param_velocity", "--ros-args", "-p", "velocity:=0.1"]
+    assert _run_hint(stderr, argv) == (
+        "package 'parameter_tests' has no executable 'param_velocity'; did you mean "
+        "'param_vel'? `%ros2 run parameter_tests param_vel --ros-args -p velocity:=0.1`."
+    )
+    assert _run_hint(stderr, ["run", "parameter_tests", "xyz"]) == (
+        "package 'parameter_tests' has no executable 'xyz'; its executables are: param_vel "
+        "(`%ros2 pkg executables parameter_tests`)."
+    )
+
+
+def test_a_wrong_package_names_the_closest_and_the_command() -> None:
+    stderr = CASES["run_missing_package"]["stderr"].replace("no_such_pkg", "parameter_test")
+    assert _run_hint(stderr, ["run", "parameter_test", "param_vel"]) == (
+        "there is no package 'parameter_test'; did you mean 'parameter_tests'? "
+        "`%ros2 run parameter_tests param_vel`."
+    )
+    assert _run_hint(stderr, ["run", "parameter_test", "param_velo"]) == (
+        "there is no package 'parameter_test'; did you mean 'parameter_tests'? It has no "
+        "'param_velo' either: did you mean 'param_vel'? `%ros2 run parameter_tests param_vel`."
+    )
+    far = CASES["run_missing_package"]["stderr"]
+    assert _run_hint(far, ["run", "no_such_pkg", "param_vel"]) == (
+        "there is no package 'no_such_pkg' and none with a close name; `%ros2 pkg executables` "
+        "lists every package's executables."
+    )
+
+
+def test_run_words_skip_the_prefix_option() -> None:
+    argv = ["run", "--prefix", "gdb -ex run", "parameter_tests", "param_vel", "--ros-args"]
+    assert hints.run_words(argv) == ("parameter_tests", "param_vel", ["--ros-args"])
+    assert hints.run_words(["run", "parameter_tests"]) is None

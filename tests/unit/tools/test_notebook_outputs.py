@@ -63,7 +63,25 @@ def test_stored_outputs_belong_to_their_cells(path: Path) -> None:
 def test_lesson_11_stores_each_attempt_in_its_own_cell() -> None:
     nb = nbformat.read(NOTEBOOKS_DIR / "11_beyond_the_tutorial.ipynb", as_version=4)
     checks = [c for c in nb.cells if c.cell_type == "code" and c.source == "travel.check()"]
-    texts = ["".join(o["data"]["text/plain"] for o in c.outputs) for c in checks]
+    texts = ["".join(o["data"]["text/plain"] for o in c.outputs if "data" in o) for c in checks]
     assert len(texts) == 2
     assert texts[0].startswith("Attempt 1:") and "passed" not in texts[0], texts[0]
     assert texts[1].startswith("Attempt 2: passed!"), texts[1]
+
+
+def test_a_refresh_runs_the_exercises_as_a_first_run_and_keeps_the_learners_counts(
+    tmp_path: Path,
+) -> None:
+    from course_lib.lessons.skills.attempts import ATTEMPTS_FILE, AttemptLog
+    from course_lib.tools.notebook_outputs import first_attempts
+
+    AttemptLog(tmp_path).add("07 drive", passed=False)
+    kept = (tmp_path / ATTEMPTS_FILE).read_bytes()
+    with first_attempts(tmp_path):
+        assert AttemptLog(tmp_path).tally("07 drive").attempts == 0
+        AttemptLog(tmp_path).add("07 drive", passed=True)  # the lesson's own run
+    assert (tmp_path / ATTEMPTS_FILE).read_bytes() == kept
+    with first_attempts(tmp_path / "none_yet"):
+        (tmp_path / "none_yet").mkdir()
+        AttemptLog(tmp_path / "none_yet").add("07 drive", passed=True)
+    assert not (tmp_path / "none_yet" / ATTEMPTS_FILE).exists()

@@ -66,3 +66,15 @@ def test_the_speed_is_taken_over_simulated_time_however_the_readings_arrived() -
     assert trace.speed(began.time_s + 0.5, began.time_s + 1.5) == pytest.approx(0.18)
     assert trace.speed(0.0, 0.9) == 0.0
     assert trace.speed(10.0, 11.0) == 0.0  # no reading: no speed
+
+
+def test_a_node_started_fifteen_minutes_before_the_check_is_judged_on_its_first_seconds() -> None:
+    trace, world = _trace()
+    steps = 15 * 60 * 50  # 15 minutes of /odom at 50 Hz: the full record holds 10
+    for step in range(steps):  # still for 1 s, 0.12 m/s from then on: the node's start
+        t = step * 0.02
+        world.send(t, 0.12 if t >= 1.0 else 0.0)
+    began = trace.first_moving(since=0.0, until=time.time())
+    assert began is not None and began.time_s == pytest.approx(1.0)
+    assert trace.speed(began.time_s + 1.5, began.time_s + 2.5) == pytest.approx(0.12)
+    assert len(trace.archive) < (steps - len(trace.readings)) / 10  # thinned, not all kept

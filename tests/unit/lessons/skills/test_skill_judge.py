@@ -11,6 +11,7 @@ from course_lib.config.loader import parse_settings
 from course_lib.core.errors import ConfigError
 from course_lib.lessons.settings import CourseSettings
 from course_lib.lessons.skills.attempts import AttemptLog
+from course_lib.lessons.skills.file_values import params_file_of, params_file_value
 from course_lib.lessons.skills.judge import (
     HINTS,
     DriveAttempt,
@@ -20,7 +21,6 @@ from course_lib.lessons.skills.judge import (
     judge_drive,
     judge_startup,
 )
-from course_lib.lessons.skills.measure import params_file_of, params_file_value
 
 NODE = "/param_vel_node"
 DRIVE = {"distance_m": 0.45, "time_s": 3.0, "tolerance_m": 0.03, "node": NODE}
@@ -178,3 +178,92 @@ def test_exercise_settings_errors_name_file_and_line(
         parse_settings(text, CourseSettings, source="config/course.yaml")
     assert (err.value.path, err.value.line) == ("config/course.yaml", line)
     assert err.value.key.endswith(key) and words in str(err.value)
+
+
+# --- issue 59: each verdict names what the learner wrote, the real cause and one next step ---
+FAST = "my_files/start_fast.yaml"
+
+
+def _file_attempt(tmp_path: Path, text: str) -> StartupAttempt:
+    """Read `text` as the learner's params file, as the exercise does; the node logged 0.0."""
+    path = tmp_path / "start_fast.yaml"
+    path.write_text(text, encoding="utf-8")
+    found = params_file_value(path, NODE)
+    return StartupAttempt(True, FAST, found.problem, found.written, found.key, first=0.0)
+
+
+def test_a_misspelt_key_in_a_params_file_is_named_with_its_rename(tmp_path: Path) -> None:
+    text = "/param_vel_node:\n  ros__parameters:\n    velocty: 0.12\n"
+    verdicts = [_start(_file_attempt(tmp_path, text), number=n) for n in (1, 2, 3)]
+    assert verdicts[0].kind == "undeclared"
+    assert verdicts[0].message == (
+        f"Attempt 1: not yet. {FAST} sets `velocty: 0.12`, which /param_vel_node does not "
+        "declare: ROS keeps it silently as an undeclared override, so /param_vel_node started "
+        "with velocity 0."
+    )
+    assert verdicts[0].hint.startswith(f"rename `velocty` to `velocity` in {FAST}: ")
+    assert verdicts[2].hint == (
+        f"make the line `velocty: 0.12` in {FAST} read `velocity: 0.12`, then start the node "
+        "again."
+    )
+    assert not [v for v in verdicts if "launch" in v.message + v.hint]
+    # the same value missing from a launch file (lesson 10) keeps the launch file's words
+    launch = _start(StartupAttempt(True, "l.py", "no_parameter", first=0.0), LAUNCH_TASK, 3)
+    assert launch.message.endswith("started with velocity 0: the launch file sets none.")
+    assert launch.hint == "add `parameters=[{'velocity': 0.18}]` to the Node of l.py."
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "words"),
+    [
+        ("/param_vel_node:\n  ros__parameters:\n    use_sim_time: false\n", "file_sets_none",
+         f"{FAST} sets no `velocity` under `/param_vel_node: ros__parameters:`"),
+        ("/param_vel_node:\n  ros__parameters: {}\n", "file_sets_none", "sets no `velocity`"),
+        ("/param_vel_node:\n  ros__parameters:\n    param_vel_node:\n      velocity: 0.12\n",
+         "nested", "sets `velocity` one level too deep, as `param_vel_node.velocity`"),
+        # what rcl refuses to read (the node ends at start-up; real rcl's words in the hints)
+        ("/param_vel_node:\n  velocity: 0.12\n", "no_ros_parameters",
+         "did not start: in my_files/start_fast.yaml, `velocity` sits right under "
+         "`/param_vel_node:`, with no `ros__parameters:` between them"),
+        ("/param_vel_node:\n", "empty_section", "`/param_vel_node:` in my_files/start_fast"),
+        ("/param_vel_node:\n  ros__parameters:\n", "empty_section", "`ros__parameters:` in"),
+        ("ros__parameters:\n  velocity: 0.12\n", "no_node_key", "begins with `ros__parameters:`"),
+        ("/param_vel_node:\n  ros__parameters:\n    velocity:\n", "unreadable", "cannot read"),
+    ],
+)  # fmt: skip
+def test_a_params_file_without_the_value_gets_params_file_words(
+    tmp_path: Path, text: str, kind: str, words: str
+) -> None:
+    attempt = _file_attempt(tmp_path, text)
+    verdicts = [_start(attempt, number=n) for n in (1, 2, 3)]
+    assert verdicts[0].kind == kind and words in verdicts[0].message, verdicts[0]
+    assert not [v for v in verdicts if "launch" in v.message + v.hint], verdicts
+    assert len({v.hint for v in verdicts}) == 3
+
+
+def test_a_velocity_above_top_speed_says_the_robot_tops_out() -> None:
+    verdicts = [_drive(DriveAttempt(0.79, 0.45), n) for n in (1, 2, 3)]
+    assert verdicts[0].kind == "over_top_speed"
+    assert verdicts[0].message == (
+        "Attempt 1: not yet. the robot drove 0.79 m in 3 s, not 0.45 m (± 3 cm): "
+        "/param_vel_node holds velocity 0.45, but the robot tops out at 0.26 m/s, forwards or "
+        "backwards, and drove at that. The answer's velocity is distance ÷ time."
+    )
+    assert "distance = velocity × time" not in " ".join(v.hint for v in verdicts)
+    assert verdicts[2].hint == "velocity = 0.45 ÷ 3 (m/s), set as a double on /param_vel_node."
+    assert _drive(DriveAttempt(0.79, -0.45)).kind == "over_top_speed"  # backwards, as fast
+    assert _drive(DriveAttempt(0.78, 0.26)).kind == "too_far"  # the top speed itself
+
+
+def test_the_refused_integer_hint_uses_the_learners_value_and_no_value_past_top_speed() -> None:
+    own = _drive(DriveAttempt(0.0, 0.0, refused="1"), 2).hint
+    assert own == (
+        "did `param set` answer 'Set parameter successful'? `1` is read as an integer and "
+        "`velocity` is a double, so ROS refused it ('Wrong parameter type') and "
+        "/param_vel_node kept velocity 0; write a speed in m/s with a decimal point, at most "
+        "0.26."
+    )
+    assert "`fast` is read as text" in _drive(DriveAttempt(0.0, 0.0, refused="fast"), 2).hint
+    generic = _drive(DriveAttempt(0.0, 0.0), 2).hint
+    assert "such as 1" not in generic and "at most 0.26" in generic
+    assert "1.0" not in own + generic
