@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from ..config.course import CourseSettings
-from ..config.trip import answer_trip, wrong_trip
+from ..config.trip import VELOCITY_MAX_MPS, answer_trip, wrong_trip
 
 __all__ = ["METADATA_KEY", "TEMPLATES", "render_cells", "settings_used", "stale_notebooks"]
 
@@ -82,9 +82,9 @@ def _drive_prose(s: CourseSettings) -> str:
     return (
         f"## Exercise\nMake the robot drive **{task.distance_m:g} m in {task.time_s:g} s** "
         f"(within {_cm(task.tolerance_m)}) by setting `velocity` while the node runs. The check\n"
-        f"measures the next {task.time_s:g} s of simulated time, then stops the robot. A wrong "
-        "attempt gets a hint, more specific each time.\n\nFirst, put the robot at its start and "
-        "arm the checker:"
+        f"measures the next {task.time_s:g} s of simulated time, then stops the robot (which tops "
+        f"out at {VELOCITY_MAX_MPS:g} m/s). A wrong attempt gets a hint, more specific each "
+        "time.\n\nFirst, put the robot at its start and arm the checker:"
     )
 
 

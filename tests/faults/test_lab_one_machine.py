@@ -37,7 +37,7 @@ def test_lessons_in_two_kernels_share_one_robot_and_one_node(lab_kernel) -> None
     opened = seven.ok(
         "from course_lib.lessons import start\nlesson = start(7)\nworld = lesson.world()"
     )
-    assert "your lab's robot" in opened.text, opened.everything
+    assert "Your lab's robot" in opened.text, opened.everything
     assert _world_pids(six) == _world_pids(seven), "two lessons, two worlds"
 
     ran = seven.ok("%ros2 run parameter_tests param_vel")

@@ -42,7 +42,7 @@ def test_every_world_call_in_a_lab_is_the_labs_one_world(lab_kernel) -> None:
     three.ok(START.format(3) + "\nworld = lesson.world()")
     # lesson 6 asks for no view: still the lab's world (a second one doubled every node)
     shown = six.ok(START.format(6) + "\nworld = lesson.world(show=False)")
-    assert "your lab's robot" in shown.text, shown.everything
+    assert "Your lab's robot" in shown.text, shown.everything
     assert _sim_pid(six) == _sim_pid(three), "lesson 6 started a second world"
     # another real-time factor changes the lab's world in place, in one line
     other.ok("from course_lib.notebook import start_world")

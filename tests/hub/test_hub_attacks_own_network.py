@@ -47,8 +47,13 @@ def test_hub_attacks_in_a_network_of_their_own() -> None:
         "-p", "no:cacheprovider", "--timeout", "600",
     ]  # fmt: skip
     # a session of its own: none of this run's pytest settings (PYTEST_ADDOPTS="-n 4" gave it
-    # four workers, each starting a hub for the same four accounts)
-    env = {k: v for k, v in os.environ.items() if not k.startswith("PYTEST_")}
+    # four workers, each starting a hub for the same four accounts), and no table of seconds
+    # (COURSE_FILE_SECONDS: it wrote a table of its one file over the suite's, mid-run)
+    env = {
+        k: v
+        for k, v in os.environ.items()
+        if not k.startswith("PYTEST_") and k != "COURSE_FILE_SECONDS"
+    }
     env[OWN_NETWORK_ENV] = "1"
     result = subprocess.run(
         argv, cwd=REPO_ROOT, env=env, capture_output=True, text=True, timeout=1400

@@ -117,7 +117,11 @@ class ParameterPanel:
 
     # -- the node's life ---------------------------------------------------------------------
     def _on_look(self, identity: Identity) -> None:
-        """Take a graph look-up (the session's executor): the node left, or came back."""
+        """Take a graph look-up (the session's executor): the node left, or came back.
+
+        The controls change before the status line says so: what the line says is then true.
+        """
+        said = ""
         with self._lock:
             if self._closed:
                 return
@@ -126,7 +130,7 @@ class ParameterPanel:
                     return
                 self._stopped = stopped_now(self.session, self.node, self._command)
                 self._gone_count += 1
-                self.status.value = _status_html(self._stopped.line)
+                said = self._stopped.line
             elif identity <= self._identity or self._reading:
                 return
             else:  # back, or another node of that name (restarted between two look-ups)
@@ -135,6 +139,8 @@ class ParameterPanel:
                 reading = (identity, self._gone_count, news)
                 threading.Thread(target=self._read_again, args=reading, daemon=True).start()
         self._lay_out()
+        if said:
+            self.status.value = _status_html(said)
 
     def _replaced(self, identity: Identity) -> bool:
         """Return whether `identity` has publishers the node shown had not: a restart (not
@@ -151,6 +157,7 @@ class ParameterPanel:
             command = start_command(self.session, self.node)
         except (CourseError, ServiceCallError):
             descriptors = None  # gone again, or not answering yet: the next look-up retries
+        said = ""
         with self._lock:
             self._reading = False
             fresh = descriptors is not None and gone_count == self._gone_count
@@ -158,9 +165,10 @@ class ParameterPanel:
                 self._identity, self._stopped, self._command = identity, None, command
                 self._apply(descriptors, values)
                 if news:
-                    line = f"{self.node} is running again: the panel shows the values it holds."
-                    self.status.value = _status_html(line)
+                    said = f"{self.node} is running again: the panel shows the values it holds."
         self._lay_out()
+        if said:
+            self.status.value = _status_html(said)
 
     def _on_event(self, msg: Any) -> None:
         if msg.node != self.node:
