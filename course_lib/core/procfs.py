@@ -18,7 +18,9 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import ipaddress
 import os
+import sys
 from collections.abc import Iterable
 from pathlib import Path
 
@@ -37,6 +39,7 @@ __all__ = [
     "pids",
     "start_time",
     "stat_fields",
+    "tcp_listeners",
     "udp_ports",
     "udp_socket_inodes",
     "unix_socket_paths",
@@ -44,6 +47,7 @@ __all__ = [
 
 PROC = Path("/proc")
 _UDP_TABLES = ("udp", "udp6")
+_TCP_LISTEN = "0A"  # the state column of a listening socket
 
 
 def stat_fields(pid: int) -> list[str] | None:
@@ -191,4 +195,31 @@ def udp_socket_inodes() -> dict[str, int]:
                 fields = line.split()
                 if len(fields) > 9 and ":" in fields[1]:
                     found[f"socket:[{fields[9]}]"] = int(fields[1].rsplit(":", 1)[1], 16)
+    return found
+
+
+def _address(text: str) -> ipaddress.IPv4Address | ipaddress.IPv6Address:
+    """Return the address of a /proc/net/tcp{,6} entry ("0100007F": each 32-bit word is
+    printed in the host's byte order)."""
+    raw = bytes.fromhex(text)
+    words = [raw[i : i + 4] for i in range(0, len(raw), 4)]
+    ordered = b"".join(w[::-1] for w in words) if sys.byteorder == "little" else raw
+    return ipaddress.ip_address(ordered)
+
+
+def tcp_listeners(
+    tables: tuple[str, ...] = ("tcp", "tcp6"),
+) -> list[tuple[ipaddress.IPv4Address | ipaddress.IPv6Address, int, int]]:
+    """Return (address, port, owner uid) of every listening TCP socket in the calling
+    thread's network namespace (all users'), from /proc/net's `tables` (each read walks all
+    the host's connections: a few ms). The owner is whoever created the socket: a socket
+    handed to a child keeps its creator's uid."""
+    found = []
+    for name in tables:
+        with contextlib.suppress(OSError):
+            for line in (PROC / "thread-self" / "net" / name).read_text().splitlines()[1:]:
+                fields = line.split()
+                if len(fields) > 7 and fields[3] == _TCP_LISTEN:
+                    address, port = fields[1].rsplit(":", 1)
+                    found.append((_address(address), int(port, 16), int(fields[7])))
     return found

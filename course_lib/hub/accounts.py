@@ -1,12 +1,14 @@
-"""The learners' and admins' Unix accounts: created by the hub's set-up, never changed after."""
+"""The learners' and admins' Unix accounts: created by the hub's set-up (or found there), each
+with a home closed to every other account; nothing else of an account is ever changed."""
 
 from __future__ import annotations
 
 import os
 import pwd
 import secrets
+import stat
 import subprocess
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -18,6 +20,7 @@ from .settings import HUB_YAML, HubSettings
 __all__ = [
     "FIRST_LEARNER_UID",
     "Account",
+    "close_home",
     "ensure_accounts",
     "ensure_system_account",
     "refuse_system_accounts",
@@ -107,10 +110,49 @@ def _record_passwords(state: Path, passwords: dict[str, str]) -> Path:
     return path
 
 
+def close_home(name: str) -> str | None:
+    """Close the home of account `name` to every other account, as the hub makes the homes of
+    the accounts it creates; return a line saying what changed, or None.
+
+    Only the permission bits of others go (the owner's stay); a home that is not a folder of
+    that account's (missing, or a shared one such as /) is left alone. Raises CourseError,
+    naming the account and the command, when root cannot close it (a root-squashed NFS home).
+    """
+    account = pwd.getpwnam(name)
+    try:
+        fd = os.open(account.pw_dir, os.O_RDONLY | os.O_DIRECTORY)
+    except OSError:
+        return None  # no home: their server says so as it starts
+    try:  # checked and changed through one descriptor: the folder cannot be swapped between
+        info = os.fstat(fd)
+        mode = stat.S_IMODE(info.st_mode)
+        if info.st_uid != account.pw_uid or mode & 0o077 == 0:
+            return None
+        os.fchmod(fd, mode & ~0o077)
+    except OSError as err:
+        raise CourseError(
+            f"The home of {name!r}, {account.pw_dir}, is open to other accounts and the hub "
+            f"cannot close it: {err.strerror}.",
+            hint=f"as {name}, run `chmod go= {account.pw_dir}` (or list another account in "
+            "config/hub.yaml), then retry.",
+        ) from None
+    finally:
+        os.close(fd)
+    return (
+        f"Made the home of {name!r} private: {account.pw_dir} was open to other accounts "
+        f"(mode {mode:o}), it is {mode & ~0o077:o} now."
+    )
+
+
 def ensure_accounts(
-    names: Iterable[str], state: Path, *, with_password: bool
+    names: Iterable[str],
+    state: Path,
+    *,
+    with_password: bool,
+    say: Callable[[str], None] = print,
 ) -> tuple[list[Account], Path | None]:
-    """Create the missing Unix accounts (home folder private to its owner).
+    """Create the missing Unix accounts (home folder private to its owner), and close the home
+    of an existing one that other accounts could open (`say`ing so).
 
     With `with_password` (PAM sign-in) each new account gets a random initial password, written
     to `state/passwords.txt` (root only) for the instructor to hand out. Existing accounts keep
@@ -122,10 +164,14 @@ def ensure_accounts(
     for name in names:
         try:
             pwd.getpwnam(name)
-            accounts.append(Account(name, created=False))
-            continue
         except KeyError:
             pass
+        else:  # made before the hub (Debian's homes are 0755): private, whoever made it
+            closed = close_home(name)
+            if closed is not None:
+                say(closed)
+            accounts.append(Account(name, created=False))
+            continue
         password = secrets.token_urlsafe(9) if with_password else None
         try:
             _create(name, password)

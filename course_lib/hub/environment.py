@@ -15,7 +15,13 @@ from pathlib import Path
 from ..core.errors import CourseError
 from ..core.paths import REPO_ROOT
 
-__all__ = ["build_environment", "check_world_executable", "course_copy", "source_files"]
+__all__ = [
+    "HUB_ONLY",
+    "build_environment",
+    "check_world_executable",
+    "course_copy",
+    "source_files",
+]
 
 # Never copied: what `make setup` builds, what learners or tests write, git's own folder.
 _SKIPPED = (
@@ -27,6 +33,10 @@ _SKIPPED = (
     "notebooks/my_files",
     "test-artifacts",
 )
+# Never copied, and removed from a copy an older build made: the hub's own settings, which
+# only the launcher reads (as root, from the instructor's folder). They name the accounts and
+# may hold the demo's password; everything in the copy is open to every account.
+HUB_ONLY = ("config/hub.yaml",)
 
 
 def course_copy(environment: Path) -> Path:
@@ -37,14 +47,14 @@ def course_copy(environment: Path) -> Path:
 def _skipped(relative: str) -> bool:
     parts = Path(relative).parts
     return "__pycache__" in parts or any(
-        relative == s or relative.startswith(s + "/") for s in _SKIPPED
+        relative == s or relative.startswith(s + "/") for s in (*_SKIPPED, *HUB_ONLY)
     )
 
 
 def source_files(repo: Path = REPO_ROOT) -> list[str]:
     """Return the course's files relative to `repo`: in a clone, the files git tracks (never
     an untracked one: a clone may hold secrets, and the copy is open to every learner), else
-    every file outside the built and written folders."""
+    every file outside the built and written folders; never the hub's own (HUB_ONLY)."""
     if (repo / ".git").exists() and shutil.which("git"):
         listed = (
             subprocess.run(
@@ -79,6 +89,17 @@ def _sync(repo: Path, target: Path) -> int:
     return copied
 
 
+def _forget_hub_files(target: Path) -> list[str]:
+    """Remove from `target` the hub's own files an older build copied there; return them."""
+    removed = []
+    for relative in HUB_ONLY:
+        path = target / relative
+        if path.is_file() or path.is_symlink():
+            path.unlink()
+            removed.append(relative)
+    return removed
+
+
 def check_world_executable(path: Path) -> None:
     """Refuse `path` unless every Unix user can reach and execute it."""
     path = Path(path)
@@ -100,12 +121,13 @@ def check_world_executable(path: Path) -> None:
             )
 
 
-def _open_to_all(root: Path) -> None:
-    """Let every user read (and enter) what the build wrote, whatever root's umask was."""
+def _open_to_all(root: Path, keep: frozenset[Path] = frozenset()) -> None:
+    """Let every user read (and enter) what the build wrote, whatever root's umask was; leave
+    the paths in `keep` as they are."""
     for folder, dirs, files in os.walk(root):
         for name in [*dirs, *files]:
             path = Path(folder, name)
-            if path.is_symlink():
+            if path.is_symlink() or path in keep:
                 continue
             mode = path.stat().st_mode
             extra = stat.S_IROTH | stat.S_IRGRP
@@ -142,6 +164,8 @@ def _build_locked(environment: Path, python: Path, say: Callable[[str], None]) -
     if copy.resolve() != REPO_ROOT.resolve():
         copied = _sync(REPO_ROOT, copy)
         say(f"The learners' copy of the course is in {copy} ({copied} files updated).")
+        for relative in _forget_hub_files(copy):
+            say(f"Removed {relative} from the learners' copy: only the hub reads it, as root.")
     say(f"Building the learners' environment with {python} (`make setup`; first time: minutes).")
     result = subprocess.run(
         ["make", "--no-print-directory", "-C", str(copy), "setup", f"PYTHON={python}"],
@@ -155,5 +179,6 @@ def _build_locked(environment: Path, python: Path, say: Callable[[str], None]) -
             f"`make setup` failed in {copy}:\n{tail}",
             hint="fix what it names (it is the same set-up as `make lab`), then retry.",
         )
-    _open_to_all(environment)
+    # the copy is the clone itself when the environment holds it: its hub.yaml stays closed
+    _open_to_all(environment, keep=frozenset(copy / relative for relative in HUB_ONLY))
     return copy

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -19,11 +20,13 @@ LEARNER_PATH = "/usr/local/bin:/usr/bin:/bin"
 def _progress(plan: HubPlan) -> tuple[list[dict[str, Any]], list[dict[str, Any]], dict[str, str]]:
     """Return the progress service, its roles and the environment it gives learners' servers
     (the launcher runs the service: course_lib/hub/progress_service.py)."""
-    from .progress import PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
+    from .progress import PROGRESS_HOLDER_ENV, PROGRESS_URL_ENV, SERVICE_NAME, roles, service_spec
 
     spec = service_spec(plan.progress_port, plan.progress_token)
     url = f"http://127.0.0.1:{plan.progress_port}/services/{SERVICE_NAME}/"
-    return [spec], roles(), {PROGRESS_URL_ENV: url}
+    # the launcher holds the port, as the account the hub runs as: a kernel sends its token
+    # to that port only while it is theirs (course_lib/lessons/progress/client.py)
+    return [spec], roles(), {PROGRESS_URL_ENV: url, PROGRESS_HOLDER_ENV: str(os.getuid())}
 
 
 def _idle_culler(plan: HubPlan) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
@@ -52,7 +55,7 @@ def configure(c: Any, plan: HubPlan) -> None:
     c.JupyterHub.db_url = f"sqlite:///{state / 'jupyterhub.sqlite'}"
     c.JupyterHub.cookie_secret_file = str(state / "jupyterhub_cookie_secret")
     c.JupyterHub.cleanup_servers = True  # the hub stopping stops every learner's server
-    c.ConfigurableHTTPProxy.api_url = f"http://127.0.0.1:{plan.proxy_api_port}"
+    c.ConfigurableHTTPProxy.api_url = plan.proxy_api_url  # a socket only root reaches
     c.ConfigurableHTTPProxy.command = tied_command(*proxy_argv(plan.proxy_command))
     c.ConfigurableHTTPProxy.pid_file = str(state / "proxy.pid")
 

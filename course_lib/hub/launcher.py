@@ -5,7 +5,6 @@ from __future__ import annotations
 import contextlib
 import os
 import secrets
-import shutil
 import signal
 import socket
 import subprocess
@@ -20,7 +19,7 @@ import yaml
 
 from ..core.errors import ConfigError, CourseError
 from ..core.ports import free_port
-from ..core.procfs import pid_namespace, start_time
+from ..core.procfs import pid_namespace
 from ..core.signalling import send
 from ..processes.children import owner_alive, owner_tag
 from .accounts import ensure_accounts, ensure_system_account, refuse_system_accounts
@@ -29,17 +28,24 @@ from .plan import PLAN_ENV, HubPlan, write_plan
 from .progress import service_environment
 from .progress_service import (
     SERVICE_ACCOUNT,
+    KeptService,
     bind_service_socket,
     records_folder,
     start_service,
-    stop_service,
 )
-from .proxy import install_proxy, missing_npm, proxy_command
+from .proxy import (
+    PROXY_API_SOCKET,
+    forget_stale_proxy,
+    install_proxy,
+    missing_npm,
+    proxy_command,
+)
 from .settings import HUB_YAML, HubSettings, load_hub_settings
 from .tied import tied_preexec
+from .tree_removal import remove_tree
 from .wall import wall_problem
 
-__all__ = ["forget_stale_proxy_pid", "forget_stale_wall_folders", "run_hub"]
+__all__ = ["forget_stale_wall_folders", "run_hub"]
 
 CONFIG_FILE = Path(__file__).resolve().parent / "jupyterhub_config.py"
 READY_TIMEOUT_S = 60.0
@@ -49,6 +55,7 @@ WALL_PREFIX = "ros2-params-course-hub-"  # + the hub's port: its learners' socke
 # In that folder (no account's name starts with a dot): the owner tag of the hub that made
 # it, and its PID namespace.
 WALL_OWNER = ".hub-owner"
+_UNIX_PATH_MAX = 107  # bytes of a Unix socket's path (sun_path holds 108, with its NUL)
 
 
 def _key_line(path: Path, key: str) -> int | None:
@@ -75,8 +82,21 @@ def _check_port(settings: HubSettings, source: Path) -> None:
             ) from None
 
 
+def _check_state(settings: HubSettings, source: Path) -> None:
+    socket_path = os.fsencode(Path(settings.state) / PROXY_API_SOCKET)
+    if len(socket_path) > _UNIX_PATH_MAX:
+        raise ConfigError(
+            str(source),
+            _key_line(source, "state"),
+            "state",
+            f"the proxy's API socket there would be {len(socket_path)} bytes long: a Unix "
+            f"socket's path is at most {_UNIX_PATH_MAX}",
+            "choose a shorter folder, e.g. the default /var/lib/ros2-params-course.",
+        )
+
+
 def _check_before_start(settings: HubSettings, source: Path) -> None:
-    """Refuse before anything is built or started: root, names, port, npm, the interpreter."""
+    """Refuse before anything is built or started: root, names, port, state, npm, Python."""
     if os.geteuid() != 0:
         raise CourseError(
             "A class hub runs each learner's server as their own Unix account: it needs root.",
@@ -84,6 +104,7 @@ def _check_before_start(settings: HubSettings, source: Path) -> None:
         )
     refuse_system_accounts(settings, source)
     _check_port(settings, source)
+    _check_state(settings, source)
     problem = missing_npm()
     if problem is not None and not proxy_command(Path(settings.environment)).exists():
         raise problem
@@ -106,7 +127,7 @@ def _wall_sockets(port: int) -> tuple[bool, str]:
         return False, ""
     run = Path("/run") if Path("/run").is_dir() else Path(tempfile.gettempdir())
     folder = run / f"{WALL_PREFIX}{port}"  # one hub on a port at a time
-    shutil.rmtree(folder, ignore_errors=True)  # the last start's, with its learners' folders
+    remove_tree(folder)  # the last start's, with its learners' folders (any depth)
     forget_stale_wall_folders(run)
     # made whole under another name, then renamed: a folder of that name always has its owner
     making = Path(tempfile.mkdtemp(prefix=f".{WALL_PREFIX}{port}-", dir=run))
@@ -130,7 +151,7 @@ def forget_stale_wall_folders(run: Path) -> list[Path]:
             tag, namespace = "", ""  # made before hubs wrote their owner: that hub is long gone
         if tag and owner_alive(tag, namespace.strip()):
             continue
-        shutil.rmtree(folder, ignore_errors=True)
+        remove_tree(folder)
         removed.append(folder)
     return removed
 
@@ -150,7 +171,6 @@ def _plan(
         ip=settings.ip,
         port=settings.port,
         hub_port=free_port(),
-        proxy_api_port=free_port(),
         progress_port=progress.getsockname()[1],
         progress_token=secrets.token_hex(32),
         authenticator=settings.authenticator,
@@ -165,52 +185,19 @@ def _plan(
     )
 
 
-def _start_progress(plan: HubPlan, listener: socket.socket) -> subprocess.Popen[bytes]:
+def _keep_progress(plan: HubPlan, listener: socket.socket) -> KeptService:
     """Start the progress service on `listener`, as its own unprivileged account, from the
-    learners' environment (readable by every account), its records in a folder of its own."""
+    learners' environment (readable by every account), its records in a folder of its own;
+    start it again on the same socket whenever it dies (the caller holds `listener`)."""
     account = ensure_system_account(SERVICE_ACCOUNT)
-    folder = records_folder(Path(plan.state), account)
+    db = records_folder(Path(plan.state), account) / "progress.sqlite"
     api = f"http://127.0.0.1:{plan.hub_port}/hub/api"
     environment = service_environment(plan.progress_port, plan.progress_token, api)
-    return start_service(
-        plan.learner_python, folder / "progress.sqlite", listener, environment, account
+    return KeptService(
+        lambda: start_service(plan.learner_python, db, listener, environment, account),
+        "The progress service",
+        log=lambda line: print(line, flush=True),
     )
-
-
-def _boot_time() -> float:
-    for line in Path("/proc/stat").read_text().splitlines():
-        if line.startswith("btime "):
-            return float(line.split()[1])
-    return 0.0
-
-
-def forget_stale_proxy_pid(pid_file: Path, proxy: Path) -> str | None:
-    """Remove `pid_file` unless it names the hub's own proxy, still running; return one line
-    saying what was left alone, or None.
-
-    JupyterHub stops (SIGTERM, then SIGKILL, as root) whatever process the proxy's pid file
-    names when it starts. After a hub was killed, that pid may be anyone's by now: only a
-    process that runs this proxy and started before the file was written is the old proxy.
-    """
-    try:
-        text = pid_file.read_text().strip()
-        written = pid_file.stat().st_mtime
-    except OSError:
-        return None
-    pid = int(text) if text.isdigit() else 0
-    started = start_time(pid) if pid > 0 else None
-    if started is not None:
-        try:
-            command = Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode()
-        except OSError:
-            command = ""
-        began = _boot_time() + int(started) / os.sysconf("SC_CLK_TCK")
-        if str(proxy) in command and began <= written + 1.0:
-            return None  # the killed hub's own proxy: JupyterHub stops it
-    pid_file.unlink(missing_ok=True)
-    if started is None:
-        return None
-    return f"{pid_file} named pid {pid}, which is not the hub's proxy any more: it is left alone."
 
 
 def _wait_ready(hub: subprocess.Popen[bytes], url: str) -> None:
@@ -241,10 +228,9 @@ def _stop(hub: subprocess.Popen[bytes]) -> int:
     return hub.returncode or 0
 
 
-def run_hub(config: Path = HUB_YAML) -> int:
-    """Start the class hub described by `config`; stop it (and every server) on Ctrl-C."""
-    settings = load_hub_settings(config)
-    _check_before_start(settings, config)
+def _prepare(settings: HubSettings) -> tuple[Path, Path, Path]:
+    """Make the state folder, the learners' environment, the proxy and the accounts; return
+    the state folder, the learners' course and the proxy's command."""
     state = Path(settings.state)
     state.mkdir(mode=0o700, parents=True, exist_ok=True)
     state.chmod(0o700)
@@ -258,23 +244,38 @@ def run_hub(config: Path = HUB_YAML) -> int:
             print(f"Created the Unix account {account.name!r}.")
     if passwords:
         print(f"Their initial passwords are in {passwords} (root only): hand them out.")
-    note = forget_stale_proxy_pid(state / "proxy.pid", proxy)
+    note = forget_stale_proxy(state, proxy)
     if note:
         print(note)
-    with bind_service_socket() as listener:  # held from here on: no port race
+    return state, course, proxy
+
+
+def run_hub(config: Path = HUB_YAML) -> int:
+    """Start the class hub described by `config`; stop it (and every server) on Ctrl-C."""
+    settings = load_hub_settings(config)
+    _check_before_start(settings, config)
+    state, course, proxy = _prepare(settings)
+    # held until the hub has stopped: the service's port is never free for another account
+    with bind_service_socket() as listener:
         plan_data = _plan(settings, state, course, proxy, listener)
         plan = write_plan(plan_data, state / "plan.json")
-        service = _start_progress(plan_data, listener)
+        service = _keep_progress(plan_data, listener)
+        try:
+            return _run_jupyterhub(settings, plan)
+        finally:
+            service.stop()
+            if plan_data.sockets:  # every server has stopped: their socket folders go too
+                remove_tree(plan_data.sockets)
+
+
+def _run_jupyterhub(settings: HubSettings, plan: Path) -> int:
+    """Run JupyterHub with `plan` until it ends or Ctrl-C; return its exit status."""
     env = {**os.environ, PLAN_ENV: str(plan)}
     signal.signal(signal.SIGTERM, signal.default_int_handler)
-    try:
-        hub = subprocess.Popen(
-            [sys.executable, "-m", "jupyterhub", "-f", str(CONFIG_FILE)],
-            cwd=state, env=env, preexec_fn=tied_preexec(),
-        )  # fmt: skip
-    except BaseException:
-        stop_service(service)
-        raise
+    hub = subprocess.Popen(
+        [sys.executable, "-m", "jupyterhub", "-f", str(CONFIG_FILE)],
+        cwd=plan.parent, env=env, preexec_fn=tied_preexec(),
+    )  # fmt: skip
     host = "127.0.0.1" if settings.ip in ("0.0.0.0", "::") else settings.ip
     url = f"http://{host}:{settings.port}/"
     try:
@@ -287,6 +288,3 @@ def run_hub(config: Path = HUB_YAML) -> int:
         return _stop(hub)
     finally:
         _stop(hub)
-        stop_service(service)
-        if plan_data.sockets:  # every server has stopped: their socket folders go too
-            shutil.rmtree(plan_data.sockets, ignore_errors=True)

@@ -7,6 +7,9 @@ import json
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from urllib.parse import quote
+
+from .proxy import PROXY_API_SOCKET
 
 __all__ = ["PLAN_ENV", "HubPlan", "read_plan", "write_plan"]
 
@@ -20,7 +23,6 @@ class HubPlan:
     ip: str
     port: int
     hub_port: int
-    proxy_api_port: int
     progress_port: int
     authenticator: str
     learners: tuple[str, ...]
@@ -39,6 +41,11 @@ class HubPlan:
     def learner_python(self) -> str:
         """Return the interpreter of the learners' environment."""
         return str(Path(self.course) / ".venv" / "bin" / "python")
+
+    @property
+    def proxy_api_url(self) -> str:
+        """Return the proxy's API address, http+unix://<its socket in the state folder>."""
+        return "http+unix://" + quote(str(Path(self.state) / PROXY_API_SOCKET), safe="")
 
 
 def write_plan(plan: HubPlan, path: Path) -> Path:

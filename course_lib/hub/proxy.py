@@ -3,18 +3,32 @@
 from __future__ import annotations
 
 import fcntl
+import os
 import shutil
 import subprocess
 from pathlib import Path
 
 from ..core.errors import CourseError
+from ..core.procfs import start_time
 
-__all__ = ["PINS_DIR", "install_proxy", "missing_npm", "proxy_argv", "proxy_command"]
+__all__ = [
+    "PINS_DIR",
+    "PROXY_API_SOCKET",
+    "forget_stale_proxy",
+    "forget_stale_proxy_pid",
+    "install_proxy",
+    "missing_npm",
+    "proxy_argv",
+    "proxy_command",
+]
 
 PINS_DIR = Path(__file__).resolve().parent / "proxy"  # package.json and its lock file
 # loaded into the proxy: keep-alive connections to Unix-socket targets (read its comment)
 PRELOAD = "unix_keepalive.mjs"
 _PINNED = ("package.json", "package-lock.json", PRELOAD)
+# The proxy's API (its token goes there with every call), on a Unix socket in the hub's state
+# folder, root's alone: no port another account could bind first, or after the proxy died.
+PROXY_API_SOCKET = "proxy-api.sock"
 
 
 def proxy_command(environment: Path) -> Path:
@@ -82,3 +96,49 @@ def _install_locked(environment: Path) -> Path:
             hint="check that this host reaches the npm registry, then run `make hub` again.",
         )
     return command
+
+
+def _boot_time() -> float:
+    for line in Path("/proc/stat").read_text().splitlines():
+        if line.startswith("btime "):
+            return float(line.split()[1])
+    return 0.0
+
+
+def forget_stale_proxy_pid(pid_file: Path, proxy: Path) -> str | None:
+    """Remove `pid_file` unless it names the hub's own proxy, still running; return one line
+    saying what was left alone, or None.
+
+    JupyterHub stops (SIGTERM, then SIGKILL, as root) whatever process the proxy's pid file
+    names when it starts. After a hub was killed, that pid may be anyone's by now: only a
+    process that runs this proxy and started before the file was written is the old proxy.
+    """
+    try:
+        text = pid_file.read_text().strip()
+        written = pid_file.stat().st_mtime
+    except OSError:
+        return None
+    pid = int(text) if text.isdigit() else 0
+    started = start_time(pid) if pid > 0 else None
+    if started is not None:
+        try:
+            command = Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode()
+        except OSError:
+            command = ""
+        began = _boot_time() + int(started) / os.sysconf("SC_CLK_TCK")
+        if str(proxy) in command and began <= written + 1.0:
+            return None  # the killed hub's own proxy: JupyterHub stops it
+    pid_file.unlink(missing_ok=True)
+    if started is None:
+        return None
+    return f"{pid_file} named pid {pid}, which is not the hub's proxy any more: it is left alone."
+
+
+def forget_stale_proxy(state: Path, proxy: Path) -> str | None:
+    """Forget what a killed hub's proxy left in `state` (forget_stale_proxy_pid; its API
+    socket, unless JupyterHub is to stop that proxy and remove it); return the one line to
+    say, or None."""
+    note = forget_stale_proxy_pid(state / "proxy.pid", proxy)
+    if not (state / "proxy.pid").exists():  # a socket file nobody listens on: the proxy's
+        (state / PROXY_API_SOCKET).unlink(missing_ok=True)  # start would fail on it
+    return note

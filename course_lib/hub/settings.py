@@ -1,14 +1,20 @@
-"""The instructor's class settings (config/hub.yaml) as a frozen dataclass (pure)."""
+"""The instructor's class settings (config/hub.yaml) as a frozen dataclass, read from a file
+that keeps a demo's password to its owner."""
 
 from __future__ import annotations
 
+import contextlib
 import ipaddress
 import re
+import stat
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
 
-from ..config.loader import SettingValueError, load_settings, setting
+import yaml
+
+from ..config.loader import SettingValueError, display_path, load_settings, setting
+from ..core.errors import ConfigError
 from ..core.paths import config_dir
 
 __all__ = ["HUB_YAML", "USER_NAME", "HubSettings", "load_hub_settings"]
@@ -83,6 +89,36 @@ class HubSettings:
         return self.learners + tuple(a for a in self.admins if a not in self.learners)
 
 
+def _key_line(path: Path, key: str) -> int | None:
+    """Return the line of top-level `key` in the YAML file `path`, if it is there."""
+    with contextlib.suppress(OSError, yaml.YAMLError):
+        root = yaml.compose(path.read_text(encoding="utf-8"), Loader=yaml.SafeLoader)
+        for key_node, _ in getattr(root, "value", []):
+            if key_node.value == key:
+                return int(key_node.start_mark.line) + 1
+    return None
+
+
+def _refuse_open_password(settings: HubSettings, path: Path) -> None:
+    """Refuse a `shared_password` in a file other accounts may read: any of them could sign
+    in as any learner with it."""
+    mode = stat.S_IMODE(path.stat().st_mode)
+    if settings.shared_password is None or mode & 0o077 == 0:
+        return
+    raise ConfigError(
+        display_path(path),
+        _key_line(path, "shared_password"),
+        "shared_password",
+        f"other accounts may read this file (mode {mode:o}), and any of them could sign in "
+        "as any learner with it",
+        f"keep it to its owner: `chmod 600 {path}`, then retry.",
+    )
+
+
 def load_hub_settings(path: str | Path | None = None) -> HubSettings:
-    """Read config/hub.yaml (or `path`); raise ConfigError naming the file and line."""
-    return load_settings(Path(path) if path is not None else HUB_YAML, HubSettings)
+    """Read config/hub.yaml (or `path`); raise ConfigError naming the file and line, or when
+    the file holds a `shared_password` other accounts may read."""
+    source = Path(path) if path is not None else HUB_YAML
+    settings = load_settings(source, HubSettings)
+    _refuse_open_password(settings, source)
+    return settings

@@ -14,7 +14,8 @@ The way in and out, all owned by the hub (root):
   enter (`jupyterhub-singleuser --ServerApp.sock`, proxied as `http+unix://`);
 - the server and its kernels reach the hub's API and the progress service at their usual
   addresses, 127.0.0.1:<port>, where the hub listens *inside* the learner's namespace and
-  relays each connection to the same port on the host.
+  relays each connection to the same port on the host, if the hub's account holds it there
+  (what a lab sends carries its token: a port freed and taken by another account gets none).
 
 Python 3.11 has no `os.unshare`/`os.setns`: both are called through libc.
 """
@@ -32,6 +33,8 @@ import socket
 import struct
 import threading
 from collections.abc import Callable
+
+from ..core.ports import held_only_by
 
 __all__ = [
     "Relay",
@@ -147,10 +150,14 @@ async def _pipe(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> N
 
 class Relay:
     """Connections to 127.0.0.1:port inside a learner's namespace, carried to 127.0.0.1:port
-    on the host (the hub's API, the progress service), for as long as the server runs."""
+    on the host (the hub's API, the progress service), for as long as the server runs, when
+    the socket listening there is the hub's account's (`holder`, this process's uid)."""
 
-    def __init__(self, pid: int, ports: list[int], log: Callable[[str], None]) -> None:
+    def __init__(
+        self, pid: int, ports: list[int], log: Callable[[str], None], holder: int | None = None
+    ) -> None:
         self.pid, self.ports, self._log = pid, ports, log
+        self.holder = os.getuid() if holder is None else holder
         self._servers: list[asyncio.base_events.Server] = []
 
     async def start(self) -> None:
@@ -166,6 +173,14 @@ class Relay:
             except OSError as err:
                 if err.errno != errno.ECONNREFUSED:
                     self._log(f"relay to 127.0.0.1:{port} failed: {err}")
+                inner_w.close()
+                return
+            if not held_only_by("127.0.0.1", port, self.holder):  # connected: no race
+                self._log(
+                    f"relay to 127.0.0.1:{port} refused: another account than the hub's holds "
+                    f"that port now; nothing of the lab of process {self.pid} went there"
+                )
+                outer_w.close()
                 inner_w.close()
                 return
             await asyncio.gather(_pipe(inner_r, outer_w), _pipe(outer_r, inner_w))

@@ -6,6 +6,7 @@ anything starts, with every problem listed (file, line, key, the allowed range, 
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -35,6 +36,9 @@ SCHEMAS: dict[str, type] = {
     "simulation.yaml": SimulationSettings,
     "hub.yaml": HubSettings,
 }
+# Only the class hub reads hub.yaml (`sudo make hub`, as root): the learners' copy of a class
+# never carries it (it may hold the demo's password), and their labs check config/ without it.
+_HUB_ONLY = "hub.yaml"
 
 
 # The files whose comments are written from their schema (config/hub.yaml keeps its own).
@@ -96,7 +100,7 @@ class ConfigReport:
         """Return the report as the instructor reads it."""
         where = display_path(self.folder)
         if self.ok:
-            lines = [f"{where}/: {', '.join(SCHEMAS)} are valid, alone and together."]
+            lines = [f"{where}/: {', '.join(self.settings)} are valid, alone and together."]
             return "\n".join(lines + [f"Note: {note}" for note in self.notes])
         lines = [f"{where}/: {len(self.problems)} problem(s); nothing was started."]
         for problem in self.problems:
@@ -109,6 +113,11 @@ def check_config(folder: Path | None = None) -> ConfigReport:
     folder = folder or config_dir()
     report = ConfigReport(folder)
     for name, schema in SCHEMAS.items():
+        if name == _HUB_ONLY and not os.access(folder / name, os.R_OK):
+            # a learners' copy of a class, or an instructor's file closed to this account
+            if (folder / name).exists():
+                report.notes.append(f"{name} is closed to this account: only the hub reads it.")
+            continue
         value, problems = check_file(folder / name, schema)
         report.problems += problems
         if value is not None:
@@ -118,7 +127,7 @@ def check_config(folder: Path | None = None) -> ConfigReport:
         paths = {name: folder / name for name in SCHEMAS}
         report.problems += check_files_together(course, sim, paths)
     if course is not None and report.ok:
-        report.notes = stale_notebooks(learner_notebooks_dir(), course)
+        report.notes += stale_notebooks(learner_notebooks_dir(), course)
     return report
 
 

@@ -15,7 +15,7 @@ import shutil
 import signal
 import subprocess
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -120,7 +120,13 @@ def start_prebuild() -> ChildProcess:
 
 
 class ClassHub:
-    """The course's hub on a free port, for `learners` and `admins` (test accounts)."""
+    """The course's hub on a free port, for `learners` and `admins` (test accounts).
+
+    Options: `course`, the clone `python -m course_lib hub` runs from (the learners' copy is
+    made from it); `config`, where the hub's settings are written (an existing file keeps its
+    mode), `settings` added to them; `before_start`, run once the accounts are gone and before
+    the hub starts (to make an account as an administrator did before the hub).
+    """
 
     def __init__(
         self,
@@ -128,10 +134,17 @@ class ClassHub:
         admins: tuple[str, ...],
         folder: Path,
         env_extra: dict[str, str] | None = None,
+        *,
+        course: Path = REPO_ROOT,
+        config: Path | None = None,
+        settings: str = "",
+        before_start: Callable[[], None] | None = None,
     ) -> None:
         self.learners, self.admins = learners, admins
         for name in (*learners, *admins):
             remove_account(name)  # a leftover of an interrupted run: start from nothing
+        if before_start is not None:
+            before_start()
         self.environment = hub_environment()
         # the progress service's account keeps its records beside the state: every parent
         # folder must let other accounts through (pytest's own temporary folder does not)
@@ -141,18 +154,21 @@ class ClassHub:
         if (folder / "state").is_dir():  # a state a test laid out (a stale pid file, ...)
             shutil.copytree(folder / "state", self.state)
         self.port = free_port()
-        self.config = folder / "hub.yaml"
+        self.config = config or folder / "hub.yaml"
         self.config.write_text(
             f"learners: [{', '.join(learners)}]\nadmins: [{', '.join(admins)}]\n"
             f"port: {self.port}\nenvironment: {self.environment}\nstate: {self.state}\n"
-            "idle_minutes: 0\n",
+            f"idle_minutes: 0\n{settings}",
             encoding="utf-8",
         )
         argv = [str(REPO_ROOT / ".venv/bin/python"), "-m", "course_lib", "hub"]
+        # the hub and JupyterHub's settings run `course`'s course_lib (the current folder
+        # comes first for `-m`; PYTHONPATH reaches the jupyterhub it starts)
+        course_env = {} if course == REPO_ROOT else {"PYTHONPATH": str(course)}
         self.process: ChildProcess = spawn(
             [*argv, "--config", str(self.config)], name="class-hub",
-            env={**independent_env(), **(env_extra or {})},
-            cwd=REPO_ROOT, merge_stderr=True,
+            env={**independent_env(), **course_env, **(env_extra or {})},
+            cwd=course, merge_stderr=True,
         )  # fmt: skip
         self.url = f"http://127.0.0.1:{self.port}"
         try:
@@ -163,8 +179,9 @@ class ClassHub:
         if up is None:  # it ended (or never said so)
             self.stop()
             raise AssertionError(f"the hub did not start:\n{self.process.text()[-4000:]}")
-        listed = (self.state / "passwords.txt").read_text(encoding="utf-8").splitlines()
-        self.passwords = dict(line.split(" ", 1) for line in listed)
+        listed = self.state / "passwords.txt"  # none with one shared password
+        lines = listed.read_text(encoding="utf-8").splitlines() if listed.exists() else []
+        self.passwords = dict(line.split(" ", 1) for line in lines)
 
     def log(self) -> str:
         """Return what the hub printed (its own log and JupyterHub's)."""

@@ -15,7 +15,13 @@ import sys
 from pathlib import Path
 from urllib.parse import urlparse
 
-KEPT = ("JUPYTERHUB_API_TOKEN", "JUPYTERHUB_USER", "COURSE_PROGRESS_URL", "JUPYTERHUB_API_URL")
+KEPT = (
+    "JUPYTERHUB_API_TOKEN",
+    "JUPYTERHUB_USER",
+    "COURSE_PROGRESS_URL",
+    "COURSE_PROGRESS_HOLDER_UID",
+    "JUPYTERHUB_API_URL",
+)
 
 
 class _Up(http.server.BaseHTTPRequestHandler):

@@ -97,10 +97,15 @@ def tcp_listeners(pid: int, uid: int) -> set[int]:
 
 
 def as_account(
-    name: str, argv: list[str], env: dict[str, str], timeout: float = 60.0
+    name: str,
+    argv: list[str],
+    env: dict[str, str],
+    timeout: float = 60.0,
+    *,
+    stdin: str | None = None,
 ) -> subprocess.CompletedProcess[str]:
     """Run `argv` as Unix account `name` on the host (its network, its home), as that account
-    would from a shell of its own."""
+    would from a shell of its own; `stdin` is what it reads (never on a command line)."""
     account = pwd.getpwnam(name)
 
     def become() -> None:
@@ -111,5 +116,5 @@ def as_account(
     full = {"HOME": account.pw_dir, "USER": name, "PATH": os.defpath, **env}
     return subprocess.run(
         argv, env=full, cwd=account.pw_dir, preexec_fn=become, capture_output=True,
-        text=True, timeout=timeout, check=False,
+        text=True, timeout=timeout, check=False, input=stdin,
     )  # fmt: skip

@@ -19,12 +19,14 @@ import sys
 import time
 from pathlib import Path
 from typing import Any
+from urllib.parse import quote
 
 import requests
 from hub_sign_in import sign_in
 
 from course_lib.core.ports import free_port
 from course_lib.hub.progress import (
+    PROGRESS_HOLDER_ENV,
     PROGRESS_URL_ENV,
     SERVICE_NAME,
     roles,
@@ -32,7 +34,7 @@ from course_lib.hub.progress import (
     service_spec,
 )
 from course_lib.hub.progress_service import bind_service_socket, start_service, stop_service
-from course_lib.hub.proxy import install_proxy
+from course_lib.hub.proxy import PROXY_API_SOCKET, install_proxy
 from course_lib.processes.children import set_parent_death_signal
 
 LEARNERS = ("alice", "bob", "carol")
@@ -59,7 +61,6 @@ class ClassHub:
         self.root = root
         self.proxy = proxy
         self.port, self.hub_port = free_port(), free_port()
-        self.proxy_api_port = free_port()
         self.listener = bind_service_socket()  # held across restarts, until close()
         self.service_port = self.listener.getsockname()[1]
         self.service_token = secrets.token_hex(32)
@@ -99,7 +100,8 @@ class ClassHub:
             "JupyterHub.cleanup_servers": True,
             "JupyterHub.services": [spec, tests],
             "JupyterHub.load_roles": [*roles(), tests_role],
-            "ConfigurableHTTPProxy.api_url": f"http://127.0.0.1:{self.proxy_api_port}",
+            "ConfigurableHTTPProxy.api_url": "http+unix://"
+            + quote(str(self.root / "state" / PROXY_API_SOCKET), safe=""),
             "ConfigurableHTTPProxy.pid_file": str(self.root / "state" / "proxy.pid"),
             "JupyterHub.authenticator_class": "shared-password",
             "SharedPasswordAuthenticator.user_password": PASSWORD,
@@ -111,6 +113,7 @@ class ClassHub:
             "Spawner.cmd": [sys.executable, str(HERE / "fake_singleuser.py")],
             "Spawner.environment": {
                 PROGRESS_URL_ENV: self.service_url,
+                PROGRESS_HOLDER_ENV: str(os.getuid()),  # this process holds its port
                 "FAKE_SERVER_OUT": str(self.servers_out),
             },
         }

@@ -1,11 +1,14 @@
-"""The class hub's progress service: its port is held from the moment it is chosen (no other
-process can take it before the service listens), and it runs as an account of its own."""
+"""The class hub's progress service: its port is held from the moment it is chosen for the
+hub's whole life (no other process can take it before the service listens, nor after it
+dies: it starts again on the same socket, at a bounded rate), and it runs as an account of
+its own."""
 
 from __future__ import annotations
 
 import os
 import pwd
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -20,11 +23,13 @@ from class_hub import hub_environment, start_prebuild
 
 from course_lib.core.paths import REPO_ROOT
 from course_lib.core.procfs import pid_alive
+from course_lib.core.waiting import wait_until
 from course_lib.hub.accounts import ensure_system_account
 from course_lib.hub.launcher import NO_WALL_ENV, _plan
 from course_lib.hub.progress import SERVICE_NAME, service_environment
 from course_lib.hub.progress_service import (
     SERVICE_ACCOUNT,
+    KeptService,
     bind_service_socket,
     records_folder,
     start_service,
@@ -85,6 +90,82 @@ def test_a_killed_launcher_leaves_no_service(tmp_path: Path) -> None:
         for stream in (launcher.stdin, launcher.stdout):
             if stream is not None:
                 stream.close()
+
+
+def _records_status(port: int, timeout: float = 60.0) -> int:
+    """Return what the service on `port` answers a GET of its records without a token (401
+    once it is up), waiting until it answers."""
+    url = f"http://127.0.0.1:{port}/services/{SERVICE_NAME}/api/records"
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            return requests.get(url, timeout=5).status_code
+        except requests.RequestException:
+            if time.monotonic() > deadline:
+                raise
+            time.sleep(0.2)
+
+
+def _squat(port: int) -> list[str]:
+    """Try to bind `port` every way another account would; return the ways that worked."""
+    took = []
+    for host, option in [
+        ("127.0.0.1", socket.SO_REUSEADDR),
+        ("127.0.0.1", socket.SO_REUSEPORT),
+        ("0.0.0.0", socket.SO_REUSEADDR),
+    ]:
+        with socket.socket() as squatter:
+            squatter.setsockopt(socket.SOL_SOCKET, option, 1)
+            try:
+                squatter.bind((host, port))
+            except OSError:
+                continue
+            took.append(f"{host} {option}")
+    return took
+
+
+def test_a_killed_service_starts_again_on_the_socket_its_launcher_holds(tmp_path: Path) -> None:
+    listener = bind_service_socket()
+    port = listener.getsockname()[1]
+    environment = service_environment(port, "t" * 64, "http://127.0.0.1:9/hub/api")
+    said: list[str] = []
+    kept = KeptService(
+        lambda: start_service(sys.executable, tmp_path / "progress.sqlite", listener, environment),
+        "The progress service",
+        log=said.append,
+    )
+    try:
+        assert _records_status(port) == 401
+        first = kept.process.pid
+        os.kill(first, signal.SIGKILL)  # as a crash would
+        assert _squat(port) == [], "the dead service's port was free to bind"
+        assert wait_until(lambda: kept.process.pid != first, 15.0), said
+        assert _records_status(port) == 401, "the restarted service does not answer"
+        assert [line for line in said if "killed by SIGKILL" in line], said
+        assert "started again on the same socket" in said[0], said
+    finally:
+        kept.stop()
+        listener.close()
+    assert kept.process.returncode == 0, "SIGTERM stops it cleanly, and it stays stopped"
+
+
+def test_a_service_that_dies_at_once_is_started_at_a_bounded_rate() -> None:
+    starts: list[float] = []
+
+    def start() -> subprocess.Popen[bytes]:
+        starts.append(time.monotonic())
+        return subprocess.Popen([sys.executable, "-c", "raise SystemExit(3)"])
+
+    said: list[str] = []
+    kept = KeptService(start, "A broken service", log=said.append, burst=3, window_s=3.0)
+    try:
+        assert wait_until(lambda: len(starts) >= 4, 20.0), said
+    finally:
+        kept.stop()
+    assert starts[2] - starts[0] < 3.0, "the first restarts come at once"
+    assert starts[3] - starts[0] >= 3.0 - 0.1, f"a 4th start within the window: {starts}"
+    paused = [line for line in said if "stopped 3 times in 3 s (exit status 3)" in line]
+    assert paused and "starts again in" in paused[0], said
 
 
 def _uid(pid: int) -> int:

@@ -16,12 +16,13 @@ from pathlib import Path
 from typing import Any
 
 # the wire format's names: the lessons' side of the contract owns them
-from ...lessons.progress.record import LESSONS, PROGRESS_URL_ENV
+from ...lessons.progress.record import LESSONS, PROGRESS_HOLDER_ENV, PROGRESS_URL_ENV
 
 __all__ = [
     "ACCESS_SCOPE",
     "DB_ENV",
     "LESSONS",
+    "PROGRESS_HOLDER_ENV",
     "PROGRESS_URL_ENV",
     "SERVICE_NAME",
     "roles",

@@ -5,10 +5,18 @@ JUPYTERHUB_API_TOKEN and JUPYTERHUB_USER; its kernels inherit them. The record g
 daemon thread with a short timeout, so the learner's cell never waits on it and never sees an
 exception; a failure is said in one line, once per kernel. Outside a hub nothing is sent.
 Standard library only: this runs in the learner's kernel.
+
+The token opens the learner's lab, so it goes to a port on this host (the class hub's
+127.0.0.1:<port>) only once the connection is made and the socket that took it is the hub's
+(COURSE_PROGRESS_HOLDER_UID, root by default): a port another account bound, the service's
+dead or not, gets nothing.
 """
 
 from __future__ import annotations
 
+import functools
+import http.client
+import ipaddress
 import json
 import os
 import sys
@@ -16,13 +24,22 @@ import threading
 import urllib.error
 import urllib.request
 from collections.abc import Callable, Mapping, Sequence
-from typing import Protocol
+from typing import Any, Protocol
+from urllib.parse import urlsplit
 
-from .record import PROGRESS_URL_ENV, Record, record_body
+from ...core.ports import held_only_by
+from .record import PROGRESS_HOLDER_ENV, PROGRESS_URL_ENV, Record, record_body
 
-__all__ = ["TIMEOUT_S", "report_attempt", "report_progress", "send_record"]
+__all__ = [
+    "TIMEOUT_S",
+    "UntrustedPortError",
+    "report_attempt",
+    "report_progress",
+    "send_record",
+]
 
 TIMEOUT_S = 2.0
+ROOT = 0  # the class hub's launcher, which holds the service's port
 _warned = threading.Event()  # one line per kernel, not one per self-check
 
 
@@ -56,21 +73,73 @@ def _reason(error: Exception) -> str:
     return str(error) or type(error).__name__
 
 
-def send_record(url: str, token: str, record: Record, timeout: float = TIMEOUT_S) -> None:
-    """POST `record` to the service at `url` with `token`; raise what went wrong."""
+class UntrustedPortError(ConnectionError):
+    """The port on this host that a record was to go to is another account's."""
+
+
+class _HeldConnection(http.client.HTTPConnection):
+    """An HTTP connection that sends nothing unless account `holder` holds the port."""
+
+    def __init__(self, host: str, *, holder: int, **kwargs: Any) -> None:
+        super().__init__(host, **kwargs)
+        self.holder = holder
+
+    def connect(self) -> None:
+        super().connect()
+        host, port = self.sock.getpeername()[:2]
+        if not held_only_by(host, port, self.holder):  # checked once connected: no race
+            self.close()
+            raise UntrustedPortError(
+                f"{host}:{port} is held by another account than the hub's, uid "
+                f"{self.holder}: nothing was sent"
+            )
+
+
+class _HeldHandler(urllib.request.HTTPHandler):
+    def __init__(self, holder: int) -> None:
+        super().__init__()
+        self.holder = holder
+
+    def http_open(self, req: urllib.request.Request) -> http.client.HTTPResponse:
+        return self.do_open(functools.partial(_HeldConnection, holder=self.holder), req)
+
+
+class _NoRedirect(urllib.request.HTTPRedirectHandler):
+    def redirect_request(self, *args: Any, **kwargs: Any) -> None:
+        return None  # the records API never redirects: a 3xx is refused, the token kept
+
+
+def _on_this_host(url: str) -> bool:
+    host = urlsplit(url).hostname or ""
+    try:
+        return host == "localhost" or ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False  # a name: another machine (a Kubernetes service), its network's care
+
+
+def send_record(
+    url: str, token: str, record: Record, timeout: float = TIMEOUT_S, *, holder: int = ROOT
+) -> None:
+    """POST `record` to the service at `url` with `token`; raise what went wrong. On this
+    host, only to a port whose listening socket account `holder` made (UntrustedPortError)."""
     request = urllib.request.Request(
         url.rstrip("/") + "/api/records",
         data=record_body(record),
         method="POST",
         headers={"Authorization": f"token {token}", "Content-Type": "application/json"},
     )
-    with urllib.request.urlopen(request, timeout=timeout) as response:
+    if _on_this_host(url):
+        handlers = (urllib.request.ProxyHandler({}), _HeldHandler(holder), _NoRedirect())
+        opener = urllib.request.build_opener(*handlers)
+    else:
+        opener = urllib.request.build_opener()
+    with opener.open(request, timeout=timeout) as response:
         response.read()
 
 
-def _send_quietly(url: str, token: str, record: Record) -> None:
+def _send_quietly(url: str, token: str, record: Record, holder: int) -> None:
     try:
-        send_record(url, token, record)
+        send_record(url, token, record, holder=holder)
     except Exception as error:  # never into the learner's cell: one line, once
         _send_failed(error)
 
@@ -114,10 +183,12 @@ def _post(
     user = env.get("JUPYTERHUB_USER")
     if not (url and token and user):
         return None
+    named = env.get(PROGRESS_HOLDER_ENV, "")
+    holder = int(named) if named.isdigit() else ROOT
     try:
         thread = threading.Thread(
             target=_send_quietly,
-            args=(url, token, make(user)),
+            args=(url, token, make(user), holder),
             name="course-progress-report",
             daemon=True,
         )

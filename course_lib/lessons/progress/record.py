@@ -14,11 +14,15 @@ from typing import Any
 # The environment variable that tells a learner's server (and so its kernels) where to post:
 # the service's direct URL, http://127.0.0.1:<port>/services/course-progress/. The hub sets it.
 PROGRESS_URL_ENV = "COURSE_PROGRESS_URL"
+# Where that URL is on the learner's own host (loopback), the account that holds its port (the
+# hub's launcher: root): nothing is sent to a port another account holds. The hub sets it.
+PROGRESS_HOLDER_ENV = "COURSE_PROGRESS_HOLDER_UID"
 LESSONS = range(1, 12)  # the lessons a record may name: 1 to 11
 
 __all__ = [
     "LESSONS",
     "MAX_FAILED_CHARS",
+    "PROGRESS_HOLDER_ENV",
     "PROGRESS_URL_ENV",
     "Record",
     "RecordError",

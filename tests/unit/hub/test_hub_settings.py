@@ -61,3 +61,18 @@ def test_mistakes_name_file_and_line(tmp_path: Path, text: str, line: int, words
     message = str(caught.value)
     assert f"hub.yaml, line {line}" in message or f"hub.yaml:{line}" in message, message
     assert words in message, message
+
+
+def test_a_shared_password_other_accounts_may_read_is_refused(tmp_path: Path) -> None:
+    """Any account that reads the demo's password signs in as any learner with it."""
+    text = GOOD + "authenticator: shared-password\nshared_password: demo-password\n"
+    path = tmp_path / "hub.yaml"
+    path.write_text(text, encoding="utf-8")
+    path.chmod(0o644)  # what git and an editor leave by default
+    with pytest.raises(ConfigError) as caught:
+        load_hub_settings(path)
+    message = str(caught.value)
+    assert "hub.yaml, line 6: shared_password" in message, message
+    assert "(mode 644)" in message and f"chmod 600 {path}" in message, message
+    path.chmod(0o600)
+    assert load_hub_settings(path).shared_password == "demo-password"

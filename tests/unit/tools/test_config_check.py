@@ -172,3 +172,13 @@ def test_a_broken_config_stops_the_command_before_anything_starts(
     assert done.returncode == 1, done.stdout + done.stderr
     assert "has no colon after its key" in done.stdout + done.stderr
     assert "Traceback" not in done.stderr and "ROS_DOMAIN_ID=" not in done.stdout
+
+
+def test_a_config_folder_without_hub_yaml_is_complete(tmp_path: Path) -> None:
+    """The learners' copy of a class carries no hub.yaml (only the hub reads it, as root: it
+    may hold the demo's password); `make doctor` in their lab checks the rest."""
+    folder = _config(tmp_path, "course.yaml", "show_hints", "show_hints")
+    (folder / "hub.yaml").unlink()
+    report = check_config(folder)
+    assert report.ok, report.render()
+    assert "config/: course.yaml, simulation.yaml are valid" in report.render(), report.render()

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import http.server
 import json
+import os
 import socket
 import threading
 import time
@@ -49,8 +50,14 @@ def receiver() -> Iterator[tuple[str, list[tuple[str, dict, bytes]]]]:
     server.server_close()
 
 
-def _env(url: str) -> dict[str, str]:
-    return {"COURSE_PROGRESS_URL": url, "JUPYTERHUB_API_TOKEN": "t0k", "JUPYTERHUB_USER": "alice"}
+def _env(url: str, holder: int | None = None) -> dict[str, str]:
+    """A server's environment on a hub whose launcher is this test (it holds the port)."""
+    return {
+        "COURSE_PROGRESS_URL": url,
+        "COURSE_PROGRESS_HOLDER_UID": str(os.getuid() if holder is None else holder),
+        "JUPYTERHUB_API_TOKEN": "t0k",
+        "JUPYTERHUB_USER": "alice",
+    }
 
 
 @pytest.mark.parametrize(
@@ -69,6 +76,19 @@ def test_the_record_names_the_first_failed_check(receiver) -> None:
     assert path == "/services/course-progress/api/records"
     assert headers["Authorization"] == "token t0k"
     assert json.loads(body) == {"user": "alice", "lesson": 6, "passed": False, "failed": "second"}
+
+
+def test_a_port_held_by_another_account_gets_no_token(
+    receiver, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The service died and another account bound its port: the record and the token stay."""
+    url, got = receiver
+    someone_else = os.getuid() + 1  # the receiver's socket is this test's
+    report_progress(CHECK, environ=_env(url, holder=someone_else)).join(5)
+    assert got == [], "the token went to a port the hub does not hold"
+    said = capsys.readouterr().err
+    assert f"is held by another account than the hub's, uid {someone_else}" in said, said
+    assert said.count("\n") == 1 and "nothing was sent" in said
 
 
 def test_an_unreachable_service_is_said_once(capsys: pytest.CaptureFixture[str]) -> None:
