@@ -69,7 +69,10 @@ def _key_line(path: Path, key: str) -> int | None:
 
 
 def _check_port(settings: HubSettings, source: Path) -> None:
+    """Refuse a public port something listens on; connections of a hub stopped moments ago
+    (TIME_WAIT) do not count, as the proxy binds with SO_REUSEADDR too."""
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
+        probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         try:
             probe.bind((settings.ip, settings.port))
         except OSError as err:

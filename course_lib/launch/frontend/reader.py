@@ -7,8 +7,7 @@ import xml.etree.ElementTree as ET
 from collections.abc import Callable
 from typing import Any
 
-import yaml
-
+from ...core.bounded_yaml import safe_load_bounded
 from ..api import actions as la
 from ..api.conditions import IfCondition, UnlessCondition
 from ..api.event_actions import Shutdown
@@ -118,8 +117,8 @@ def _load_entity(path: str) -> Entity:
 
 
 def _yaml_root(path: str) -> Entity:
-    with open(path) as handle:
-        tree = yaml.safe_load(handle)
+    with open(path) as handle:  # bounded: a few KB of nested aliases would fill the memory
+        tree = safe_load_bounded(handle, name=path)
     if len(tree) != 1:
         raise RuntimeError("Expected only one root")
     ((type_name, body),) = tree.items()

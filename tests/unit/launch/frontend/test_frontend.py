@@ -109,3 +109,21 @@ def test_a_dry_run_says_which_code_reading_the_file_ran(tmp_path: Path) -> None:
     plain = tmp_path / "plain.launch.xml"
     plain.write_text('<launch>\n  <let name="a" value="42"/>\n</launch>\n')
     assert dry_run_file(str(plain), []).warnings == []
+
+
+def test_a_yaml_launch_file_of_nested_aliases_is_refused_at_once_naming_it(
+    tmp_path: Path,
+) -> None:
+    import time
+
+    from course_lib.launch.core.loading import InvalidLaunchFileError
+
+    lines = ["launch:", "- arg: &l0 {name: x, default: '1'}"]  # 2 KB that expand to 2**26
+    lines += [f"- let: &l{n} {{name: l{n}, value: [*l{n - 1}, *l{n - 1}]}}" for n in range(1, 27)]
+    path = tmp_path / "bomb.launch.yaml"
+    path.write_text("\n".join(lines) + "\n")
+    started = time.monotonic()
+    with pytest.raises(InvalidLaunchFileError) as refused:
+        load_any_launch_file(str(path))
+    assert time.monotonic() - started < 2.0
+    assert f"{path}, line " in str(refused.value) and "aliases" in str(refused.value)
