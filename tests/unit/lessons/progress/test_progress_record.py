@@ -50,3 +50,36 @@ def test_a_bad_record_says_what_is_wrong(data: object, says: str) -> None:
 def test_a_body_that_is_not_json() -> None:
     with pytest.raises(RecordError, match="not JSON"):
         parse_record(b"\xff{")
+
+
+def test_a_record_names_one_of_the_lessons_exercises_or_is_refused() -> None:
+    import json
+
+    from course_lib.lessons.progress.record import EXERCISES
+
+    def body(exercise: str, lesson: int) -> bytes:
+        fields = {"user": "ada", "lesson": lesson, "passed": False, "failed": ""}
+        return json.dumps({**fields, "exercise": exercise, "attempt": 1}).encode()
+
+    assert parse_record(body("07 drive", 7)).exercise == "07 drive"
+    made_up = [body(f"exercise {n}", 7) for n in range(2000)]  # once a 4.3 MB store
+    for posted in [*made_up, body("07 drive", 9)]:
+        with pytest.raises(RecordError, match="no exercise of lesson"):
+            parse_record(posted)
+    assert len(EXERCISES) == 5
+
+
+def test_the_list_of_exercises_is_the_lessons_own() -> None:
+    from course_lib.lessons.exercise import NAME as TRAVEL
+    from course_lib.lessons.progress.record import EXERCISES
+    from course_lib.lessons.skills import exercises
+
+    skills = [
+        exercises.DriveExercise,
+        exercises.ParamsFileExercise,
+        exercises.LaunchExercise,
+        exercises.SavedPanelExercise,
+    ]
+    names = {kind.name for kind in skills} | {TRAVEL}
+    assert names == set(EXERCISES)
+    assert all(EXERCISES[name] == int(name.split()[0]) for name in names)
