@@ -21,6 +21,7 @@ from typing import Any
 from ..core.errors import CourseError
 from .file_hints import file_sections, key_matches, params_files, section_hints, started_nodes
 from .run_hints import NO_EXECUTABLE, NO_PACKAGE, file_crash_hint, run_hint, run_words
+from .start_command import last_start_command
 from .value_hints import (
     absolute,
     closest,
@@ -127,10 +128,7 @@ def _param_hint(words: list[str], stdout: str, stderr: str, client: Any) -> str 
         return None
     node = absolute(words[2])
     if stderr.startswith(NODE_NOT_FOUND):
-        running = _node_names(client)
-        return _stopped_hint(node, running) or missing_name_hint(
-            "node", node, running, "`%ros2 node list`"
-        )
+        return _missing_node_hint(node, _node_names(client))
     if len(words) < 4:
         return None
     name, show = words[3], f"`%ros2 param list {node}`"
@@ -143,6 +141,20 @@ def _param_hint(words: list[str], stdout: str, stderr: str, client: Any) -> str 
     if words[1] == "set" and len(words) >= 5:
         return type_hint(stderr, name, words[4])
     return None
+
+
+def _missing_node_hint(node: str, running: Sequence[str]) -> str:
+    """Say why `node` is not found: another lesson stopped it, a running node has a close
+    name, or it ran in this lab before (with the command that started it), else that no node
+    has that name."""
+    stopped = _stopped_hint(node, running)
+    if stopped is not None:
+        return stopped
+    domain = os.environ.get("ROS_DOMAIN_ID")
+    again = last_start_command(node, domain) if domain and closest(node, running) is None else None
+    if again:
+        return f"{node} is not running now (it ran in this lab before): start it again: `{again}`."
+    return missing_name_hint("node", node, running, "`%ros2 node list`")
 
 
 def _stopped_hint(node: str, running: Sequence[str]) -> str | None:
@@ -213,10 +225,7 @@ def command_hint(
         return _live_run_hint(argv, stderr)
     missing = UNABLE_TO_FIND.search(stderr)
     if words[:2] == ["node", "info"] and missing:
-        name, running = missing.group(1), _node_names(client())
-        return _stopped_hint(absolute(name), running) or missing_name_hint(
-            "node", name, running, "`%ros2 node list`"
-        )
+        return _missing_node_hint(absolute(missing.group(1)), _node_names(client()))
     return None
 
 

@@ -61,15 +61,24 @@ def pace_from_env(default: Pace) -> Pace:
 
 @dataclass(frozen=True)
 class Mistake:
-    """A mistaken cell a learner adds to lesson `lesson`, and what its output must hold.
+    """A mistaken cell a learner adds to lesson `lesson`, and what its hint must hold.
 
     Each leaves the lab as it was (refused, or a read): the walk goes on from the right answers.
+    A mistake made on /param_vel_node while another step had stopped it (a kernel restarted, a
+    lesson's `lesson.stop`, another lesson's driver) gets the hint of that instead.
     """
 
     lesson: int
     code: str
-    shows: str  # a text its output must show (its hint, in the learner's words)
+    shows: str  # a text its hint must hold while the node runs
 
+    def expected(self) -> tuple[str, ...]:
+        """Return the texts any one of which its hint must hold, whatever the lab's state."""
+        return (self.shows, *(_NODE_GONE if "/param_vel" in self.code else ()))
+
+
+# what the hint says when /param_vel_node is not running (the lab's state, not the mistake)
+_NODE_GONE = ("/param_vel_node is not running", "no node '/param_vel", "there is no '/param_vel")
 
 MISTAKES = (
     Mistake(7, "%ros2 param set /param_vel_node velocity 1", "double"),

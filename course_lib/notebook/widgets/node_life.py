@@ -9,7 +9,6 @@ started again between two look-ups is still seen to be another one.
 from __future__ import annotations
 
 import logging
-import shlex
 import threading
 import time
 import weakref
@@ -18,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ...core.errors import CourseError
+from ..start_command import last_start_command
 
 __all__ = [
     "LOOK_S",
@@ -164,36 +164,6 @@ def stopped_now(session: Any, node: str, command: str | None) -> Stopped:
     return Stopped(node, when, command)
 
 
-def _started(records: list[dict[str, Any]], node: str) -> dict[str, Any] | None:
-    """Return the last start record of `node`: named in it, or by the next `named` record of
-    its executable (a notebook's door learns the name from the node's log)."""
-    found = None
-    unnamed: dict[Any, dict[str, Any]] = {}  # executable -> its last start, not named yet
-    for record in records:
-        kind, executable = record.get("t"), record.get("exe")
-        if kind == "start" and record.get("node"):
-            found = record if record["node"] == node else found
-        elif kind == "start":
-            unnamed[executable] = record
-        elif kind == "named" and executable in unnamed:
-            start = unnamed.pop(executable)
-            found = start if record.get("node") == node else found
-    return found
-
-
 def start_command(session: Any, node: str) -> str | None:
-    """Return the `%ros2 run` line that started `node` last (from the parameter journal), or
-    None if the course did not start it that way (a launch file, a terminal, unknown)."""
-    from ...core import ament
-    from ...core.param_journal import read_journal
-
-    record = _started(read_journal(session.domain_id), node)
-    if record is None or record.get("door") in ("launch", "terminal"):
-        return None
-    executable = str(record.get("exe") or "")
-    package = ament.package_of_executable(executable, session.env) if executable else None
-    if package is None:
-        return None
-    args = [str(a) for a in record.get("args") or []]
-    words = ["%ros2", "run", package, executable, *(["--ros-args", *args] if args else [])]
-    return " ".join(shlex.quote(word) for word in words)
+    """Return the `%ros2 run` line that started `node` last in this session's lab, or None."""
+    return last_start_command(node, session.domain_id, session.env)

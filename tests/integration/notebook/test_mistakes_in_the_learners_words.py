@@ -126,3 +126,20 @@ def test_a_node_another_lesson_stopped_names_that_lesson_and_the_cell(
     finally:
         for child in session.children:
             child.stop()
+
+
+def test_a_node_that_ran_here_before_is_named_with_the_command_that_started_it(
+    session: Session,
+) -> None:
+    """Stopped by a kernel restart, `lesson.stop` or Ctrl-C (no lesson took it over): the
+    hint gives the `%ros2 run` line that started it in this lab, its --ros-args too."""
+    started = run_line("run parameter_tests param_vel --ros-args -p velocity:=0.1")
+    assert "Velocity parameter is: 0.100000" in started.output.text, started.text
+    for child in session.children:
+        child.stop()
+    gone = run_line("param get /param_vel_node velocity")
+    assert gone.output.stderr.startswith("Node not found"), gone.text
+    assert gone.hints == [
+        "/param_vel_node is not running now (it ran in this lab before): start it again: "
+        "`%ros2 run parameter_tests param_vel --ros-args -p velocity:=0.1`."
+    ], gone.hints
