@@ -37,11 +37,11 @@ DEBIAN_PYTHON = "/usr/bin/python3"  # every account may run it (the course's may
 # Run as an account: every regular file under the folders named, that account's own folders
 # and every process's command line and environment it may open; the password comes on stdin.
 _SEARCH = r"""
-import json, os, stat, sys
+import json, os, stat, sys, tempfile
 secret = sys.stdin.read().strip().encode()
 uid = os.getuid()
-roots = [*sys.argv[1:], os.path.expanduser("~"), f"/tmp/ros2-course-{uid}", f"/run/user/{uid}",
-         "/dev/shm"]
+course_tmp = os.path.join(tempfile.gettempdir(), f"ros2-course-{uid}")  # the runtime folder
+roots = [*sys.argv[1:], os.path.expanduser("~"), course_tmp, f"/run/user/{uid}", "/dev/shm"]
 found, read = [], []
 
 def look(path):
