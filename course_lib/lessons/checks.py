@@ -10,7 +10,7 @@ import yaml
 
 from .report import Check, check
 
-__all__ = ["installed_checks", "run_checks"]
+__all__ = ["installed_checks", "own_node", "run_checks"]
 
 # Lesson 8's dump: the learner's own file (the package's params file is never rewritten).
 DUMP_NAME = "dump/param_vel_node.yaml"
@@ -23,14 +23,14 @@ def _nodes() -> list[str]:
     return api.node_list()
 
 
-def _own_node(lesson: Any, executable: str = "param_vel") -> Any:
+def own_node(lesson: Any, executable: str = "param_vel") -> Any:
     """Return the process of `executable` this lesson started, or None (never another's)."""
     running = [c for c in lesson.session.children if c.name == executable]
     return running[-1] if running else lesson.started.get(executable)
 
 
 def _own_node_running(lesson: Any, executable: str = "param_vel") -> bool:
-    child = _own_node(lesson, executable)
+    child = own_node(lesson, executable)
     return child is not None and child.alive
 
 
@@ -107,7 +107,7 @@ def _namesakes(node: str) -> tuple[bool, list[str]]:
 
 
 def _lesson_2(lesson: Any) -> list[Check]:
-    started = _own_node(lesson) is not None
+    started = own_node(lesson) is not None
     gone = started and not _own_node_running(lesson)
     listed, others = _namesakes("/param_vel_node") if gone else (False, [])
     what = "param_vel_node is gone, and its parameters with it"
@@ -196,7 +196,7 @@ def other_drivers(lesson: Any, executable: str) -> list[str]:
     from ..lab.takeover import lessons_nodes
     from ..ros2.api.nodes_and_params import client
 
-    own = _own_node(lesson, executable)
+    own = own_node(lesson, executable)
     found = others_of(client(), own.pid if own and own.alive else None)
     records = lessons_nodes() if found else []
     named = []

@@ -17,10 +17,9 @@ START_WAIT_S = 5.0  # simulated s a still robot gets to start when its node hold
 def _commanded_mps(lesson: Any) -> float:
     """Return the velocity that this lesson's running param_vel_node holds (0.0 if none)."""
     from ..ros2.api import nodes_and_params as api
+    from .checks import own_node  # the `%ros2 run` cell's process as well as lesson.run's
 
-    # the lesson's `%ros2 run` cell starts it through the session, `lesson.run` through both
-    running = [c for c in lesson.session.children if c.name == "param_vel"]
-    child = running[-1] if running else lesson.started.get("param_vel")
+    child = own_node(lesson)
     if child is None or not child.alive:
         return 0.0
     try:

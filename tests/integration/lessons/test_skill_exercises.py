@@ -18,6 +18,7 @@ import pytest
 
 from course_lib.config.course import load_course_settings
 from course_lib.lessons import Lesson
+from course_lib.lessons.skills.exercises import DriveExercise
 from course_lib.ros2.api import nodes_and_params as api
 from course_lib.session.session import get_session
 
@@ -214,16 +215,20 @@ def test_lesson11_saved_panel(world_lesson: Lesson, stop_nodes: None) -> None:
 
 
 # Issue 59: each verdict names what the learner wrote, the real cause and one next step.
-def test_lesson7_a_velocity_past_top_speed(
-    world_lesson: Lesson, stop_nodes: None, tmp_path: Path
-) -> None:
-    from course_lib.lessons.skills.exercises import DriveExercise
-
+def _armed_drive(world_lesson: Lesson, learner_dir: Path) -> DriveExercise:
+    """Lesson 7's exercise armed on a fresh param_vel_node, its attempts counted from 1."""
     lesson = _lesson(7, world_lesson)
-    lesson.learner_dir = tmp_path  # attempts counted from 1
+    lesson.learner_dir = learner_dir
     lesson.run("parameter_tests", "param_vel")
     drive = DriveExercise(lesson)
     drive.arm()
+    return drive
+
+
+def test_lesson7_a_velocity_past_top_speed(
+    world_lesson: Lesson, stop_nodes: None, tmp_path: Path
+) -> None:
+    drive = _armed_drive(world_lesson, tmp_path)
     assert api.param_set(NODE, "velocity", 0.45).successful  # the distance, typed as a speed
     verdict = drive.check()
     assert verdict.kind == "over_top_speed", verdict
@@ -240,13 +245,7 @@ def test_lesson7_a_velocity_past_top_speed(
 def test_lesson7_a_refused_integer_is_named_as_typed(
     world_lesson: Lesson, stop_nodes: None, tmp_path: Path
 ) -> None:
-    from course_lib.lessons.skills.exercises import DriveExercise
-
-    lesson = _lesson(7, world_lesson)
-    lesson.learner_dir = tmp_path  # attempts counted from 1
-    lesson.run("parameter_tests", "param_vel")
-    drive = DriveExercise(lesson)
-    drive.arm()
+    drive = _armed_drive(world_lesson, tmp_path)
     for _attempt in range(2):  # the same mistake twice: the second hint is the specific one
         assert not api.param_set(NODE, "velocity", 1).successful
         verdict = drive.check()
