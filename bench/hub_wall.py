@@ -30,8 +30,8 @@ import psutil
 import requests
 
 from course_lib.core.paths import REPO_ROOT
+from course_lib.hub.guard.wall import wall_problem
 from course_lib.hub.launcher import NO_WALL_ENV
-from course_lib.hub.wall import wall_problem
 
 _UP = "The class hub is up"
 ADMIN = "r2pb-admin"

@@ -7,10 +7,10 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from .build.proxy import proxy_argv
+from .guard.tied import tied_command
 from .plan import HubPlan
-from .proxy import proxy_argv
 from .singleuser import DEFAULT_URL
-from .tied import tied_command
 
 __all__ = ["configure"]
 

@@ -22,8 +22,19 @@ from ..core.ports import free_port
 from ..core.procfs import pid_namespace
 from ..core.signalling import send
 from ..processes.children import owner_alive, owner_tag
-from .accounts import ensure_accounts, ensure_system_account, refuse_system_accounts
-from .environment import build_environment, check_world_executable
+from .build.accounts import ensure_accounts, ensure_system_account, refuse_system_accounts
+from .build.environment import build_environment, check_world_executable
+from .build.proxy import (
+    PROXY_API_SOCKET,
+    forget_stale_proxy,
+    install_proxy,
+    missing_npm,
+    proxy_command,
+)
+from .build.settings import HUB_YAML, HubSettings, load_hub_settings
+from .guard.tied import tied_preexec
+from .guard.tree_removal import remove_tree
+from .guard.wall import wall_problem
 from .plan import PLAN_ENV, HubPlan, write_plan
 from .progress import service_environment
 from .progress_service import (
@@ -33,17 +44,6 @@ from .progress_service import (
     records_folder,
     start_service,
 )
-from .proxy import (
-    PROXY_API_SOCKET,
-    forget_stale_proxy,
-    install_proxy,
-    missing_npm,
-    proxy_command,
-)
-from .settings import HUB_YAML, HubSettings, load_hub_settings
-from .tied import tied_preexec
-from .tree_removal import remove_tree
-from .wall import wall_problem
 
 __all__ = ["forget_stale_wall_folders", "run_hub"]
 

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import quote
 
-from .proxy import PROXY_API_SOCKET
+from .build.proxy import PROXY_API_SOCKET
 
 __all__ = ["PLAN_ENV", "HubPlan", "read_plan", "write_plan"]
 
@@ -33,7 +33,7 @@ class HubPlan:
     idle_minutes: int
     shared_password: str | None = None
     admin_password: str | None = None
-    wall: bool = False  # each learner's server in a network of its own (course_lib.hub.wall)
+    wall: bool = False  # each learner's server in a network of its own (course_lib.hub.guard.wall)
     sockets: str = ""  # with the wall: the folder of the learners' server socket folders
     progress_token: str = ""  # the progress service's API token (the launcher starts it)
 

@@ -27,8 +27,8 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 
 from ..core.errors import CourseError
+from .guard.tied import tie_to_parent
 from .progress import service_command
-from .tied import tie_to_parent
 
 __all__ = [
     "SERVICE_ACCOUNT",

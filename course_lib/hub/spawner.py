@@ -19,8 +19,8 @@ from traitlets import Bool, Int, List, Unicode
 from ..core.errors import DomainUnavailableError
 from ..core.signalling import send
 from ..processes.domain import DOMAIN_ENV, candidate_domains, domain_in_use
-from .tied import tie_to_parent
-from .wall import Relay, enter_own_network
+from .guard.tied import tie_to_parent
+from .guard.wall import Relay, enter_own_network
 
 __all__ = ["CourseSpawner", "HubDomains", "leftover_stop_argv", "run_bounded"]
 
@@ -71,7 +71,7 @@ class CourseSpawner(LocalProcessSpawner):
 
     The hub gives each learner their ROS domain id for the server's life (`HubDomains`). With
     `wall` (the hub's default where the kernel allows it), the server starts in a network of
-    its own (course_lib.hub.wall): it listens on a Unix socket in `sockets_dir/<name>/`, a
+    its own (course_lib.hub.guard.wall): it listens on a Unix socket in `sockets_dir/<name>/`, a
     folder only the learner (and root) can enter, and the hub relays `relay_ports` (its API,
     the progress service) into that network.
     """

@@ -47,10 +47,10 @@ HUB_CONFIG = """\
 import os
 import sys
 
-from jupyterhub.proxy import Proxy
+from jupyterhub.build.proxy import Proxy
 from jupyterhub.spawner import SimpleLocalProcessSpawner
 
-from course_lib.hub.tied import tie_to_parent
+from course_lib.hub.guard.tied import tie_to_parent
 
 
 class RoutesOnly(Proxy):

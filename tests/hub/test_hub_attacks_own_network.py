@@ -18,14 +18,14 @@ from class_hub import start_prebuild
 from test_hub_attacks import OWN_NETWORK_ENV
 
 from course_lib.core.paths import REPO_ROOT
-from course_lib.hub.wall import wall_problem
+from course_lib.hub.guard.wall import wall_problem
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow, pytest.mark.learners_env]
 
 ATTACKS = Path(__file__).with_name("test_hub_attacks.py")
 _ENTER = (
     "import os, sys\n"
-    "from course_lib.hub.wall import enter_own_network\n"
+    "from course_lib.hub.guard.wall import enter_own_network\n"
     "enter_own_network()\n"
     "os.execv(sys.executable, [sys.executable, *sys.argv[1:]])\n"
 )

@@ -18,8 +18,8 @@ import requests
 from class_hub import ClassHub
 from hub_sign_in import sign_in
 
+from course_lib.hub.guard.wall import wall_problem
 from course_lib.hub.launcher import NO_WALL_ENV
-from course_lib.hub.wall import wall_problem
 
 pytestmark = [pytest.mark.slow, pytest.mark.learners_env]
 

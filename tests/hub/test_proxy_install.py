@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.hub.proxy import install_proxy, proxy_command
+from course_lib.hub.build.proxy import install_proxy, proxy_command
 
 pytestmark = [
     pytest.mark.slow,

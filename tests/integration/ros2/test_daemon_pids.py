@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from course_lib.core.waiting import wait_until
-from course_lib.hub.wall import enter_own_network, wall_problem
+from course_lib.hub.guard.wall import enter_own_network, wall_problem
 from course_lib.ros2.node import connect
 
 pytestmark = [pytest.mark.ros]

@@ -10,10 +10,10 @@ from urllib.parse import unquote
 from jupyterhub.objects import Server
 from traitlets.config import Config
 
+from course_lib.hub.build.proxy import PINS_DIR, PRELOAD, PROXY_API_SOCKET, proxy_command
 from course_lib.hub.hub_config import configure
 from course_lib.hub.plan import HubPlan
 from course_lib.hub.progress import PROGRESS_HOLDER_ENV
-from course_lib.hub.proxy import PINS_DIR, PRELOAD, PROXY_API_SOCKET, proxy_command
 
 
 def _configured(tmp_path: Path) -> Config:
@@ -38,8 +38,8 @@ def _configured(tmp_path: Path) -> Config:
 def test_the_hub_runs_its_proxy_with_the_unix_keepalive_preload(tmp_path: Path) -> None:
     command = proxy_command(tmp_path / "environment")
     argv = _configured(tmp_path).ConfigurableHTTPProxy.command
-    # python -m course_lib.hub.tied --parent PID, then node --import <preload> <proxy>
-    assert argv[1:3] == ["-m", "course_lib.hub.tied"]
+    # python -m course_lib.hub.guard.tied --parent PID, then node --import <preload> <proxy>
+    assert argv[1:3] == ["-m", "course_lib.hub.guard.tied"]
     assert argv[-3:] == ["--import", (command.parents[2] / PRELOAD).as_uri(), str(command)]
     assert Path(argv[-4]).name == "node"
     assert (PINS_DIR / PRELOAD).is_file()  # install_proxy copies it beside node_modules/

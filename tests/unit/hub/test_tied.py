@@ -1,4 +1,4 @@
-"""`course_lib.hub.tied`: a command tied to a parent that died before the tie never runs on."""
+"""`course_lib.hub.guard.tied`: a command tied to a parent that died before the tie never runs."""
 
 from __future__ import annotations
 
@@ -10,13 +10,13 @@ import sys
 import time
 from pathlib import Path
 
-from course_lib.hub.tied import tied_command
+from course_lib.hub.guard.tied import tied_command
 
 # The parent starts a tied `sleep` and exits at once: the child, still starting Python, ties
 # itself to a parent that is gone already.
 _PARENT = (
     "import os, subprocess, sys\n"
-    "from course_lib.hub.tied import tied_command\n"
+    "from course_lib.hub.guard.tied import tied_command\n"
     "child = subprocess.Popen(tied_command('sleep', '30'), stdout=subprocess.DEVNULL,\n"
     "                         stderr=subprocess.DEVNULL)\n"
     "print(child.pid, flush=True)\n"
@@ -52,5 +52,5 @@ def test_a_command_whose_parent_died_before_the_tie_does_not_run() -> None:
 
 def test_the_command_names_the_parent_it_is_built_in() -> None:
     argv = tied_command("configurable-http-proxy", "--port", "8000")
-    assert argv[1:5] == ["-m", "course_lib.hub.tied", "--parent", str(os.getpid())]
+    assert argv[1:5] == ["-m", "course_lib.hub.guard.tied", "--parent", str(os.getpid())]
     assert argv[5:] == ["configurable-http-proxy", "--port", "8000"]

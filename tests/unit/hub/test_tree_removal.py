@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from course_lib.core.paths import REPO_ROOT
-from course_lib.hub.tree_removal import _climb, _identity, remove_tree
+from course_lib.hub.guard.tree_removal import _climb, _identity, remove_tree
 
 NOBODY = 65534
 
@@ -57,7 +57,7 @@ def test_a_deep_tree_needs_only_a_few_open_files(tmp_path: Path) -> None:
         "import resource, sys\n"
         "_, hard = resource.getrlimit(resource.RLIMIT_NOFILE)\n"
         "resource.setrlimit(resource.RLIMIT_NOFILE, (24, hard))\n"
-        "from course_lib.hub.tree_removal import remove_tree\n"
+        "from course_lib.hub.guard.tree_removal import remove_tree\n"
         "print(remove_tree(sys.argv[1]))\n"
     )
     done = subprocess.run(
@@ -138,7 +138,7 @@ def test_what_cannot_be_removed_stays_and_the_walk_ends(open_folder: Path) -> No
             os.setgid(NOBODY)
             os.setuid(NOBODY)
 
-    code = "import sys; from course_lib.hub.tree_removal import remove_tree\n"
+    code = "import sys; from course_lib.hub.guard.tree_removal import remove_tree\n"
     code += "print(remove_tree(sys.argv[1]))\n"
     # the course's interpreter may be under root's private home: Debian's is everyone's
     python = "/usr/bin/python3" if os.geteuid() == 0 else sys.executable

@@ -13,8 +13,8 @@ import pytest
 from course_lib.core.ports import free_port
 from course_lib.core.procfs import pid_namespace
 from course_lib.hub import launcher
+from course_lib.hub.guard.wall import wall_problem
 from course_lib.hub.launcher import WALL_OWNER, WALL_PREFIX, forget_stale_wall_folders
-from course_lib.hub.wall import wall_problem
 from course_lib.processes.children import owner_tag
 
 

@@ -1,4 +1,4 @@
-"""`python -m course_lib.hub.tied CMD ARGS...`: run CMD so that it stops when its parent dies.
+"""`python -m course_lib.hub.guard.tied CMD ARGS...`: run CMD so it stops when its parent dies.
 
 The hub starts its proxy and services as children of its own; were the hub killed, they would
 live on without it. Started through this module they get SIGTERM the moment their parent dies.
@@ -15,7 +15,7 @@ import signal
 import sys
 from collections.abc import Callable
 
-from ..processes.children import set_parent_death_signal
+from ...processes.children import set_parent_death_signal
 
 __all__ = ["tie_to_parent", "tied_command", "tied_preexec"]
 
@@ -35,7 +35,7 @@ def tied_preexec(sig: int = signal.SIGTERM) -> Callable[[], None]:
 
 def tied_command(*argv: str) -> list[str]:
     """Return the command line that runs `argv` tied to this process, its parent to be."""
-    return [sys.executable, "-m", "course_lib.hub.tied", "--parent", str(os.getpid()), *argv]
+    return [sys.executable, "-m", "course_lib.hub.guard.tied", "--parent", str(os.getpid()), *argv]
 
 
 def main(argv: list[str]) -> int:
@@ -43,7 +43,8 @@ def main(argv: list[str]) -> int:
     if argv[:1] == ["--parent"] and len(argv) >= 2 and argv[1].isdigit():
         parent, argv = int(argv[1]), argv[2:]
     if not argv:
-        print("usage: python -m course_lib.hub.tied [--parent PID] CMD [ARGS...]", file=sys.stderr)
+        usage = "usage: python -m course_lib.hub.guard.tied [--parent PID] CMD [ARGS...]"
+        print(usage, file=sys.stderr)
         return 2
     tie_to_parent(parent=parent)
     os.execvp(argv[0], argv)

@@ -8,8 +8,8 @@ import shutil
 import subprocess
 from pathlib import Path
 
-from ..core.errors import CourseError
-from ..core.procfs import start_time
+from ...core.errors import CourseError
+from ...core.procfs import start_time
 
 __all__ = [
     "PINS_DIR",

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import yaml
 
-from ..core.errors import ConfigError, CourseError
+from ...core.errors import ConfigError, CourseError
 from .settings import HUB_YAML, HubSettings
 
 __all__ = [

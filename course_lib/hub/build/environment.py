@@ -12,8 +12,8 @@ import subprocess
 from collections.abc import Callable
 from pathlib import Path
 
-from ..core.errors import CourseError
-from ..core.paths import REPO_ROOT
+from ...core.errors import CourseError
+from ...core.paths import REPO_ROOT
 
 __all__ = [
     "HUB_ONLY",

@@ -13,9 +13,9 @@ from typing import Literal
 
 import yaml
 
-from ..config.loader import SettingValueError, display_path, load_settings, setting
-from ..core.errors import ConfigError
-from ..core.paths import config_dir
+from ...config.loader import SettingValueError, display_path, load_settings, setting
+from ...core.errors import ConfigError
+from ...core.paths import config_dir
 
 __all__ = ["HUB_YAML", "USER_NAME", "HubSettings", "load_hub_settings"]
 

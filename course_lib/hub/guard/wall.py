@@ -34,7 +34,7 @@ import struct
 import threading
 from collections.abc import Callable
 
-from ..core.ports import held_only_by
+from ...core.ports import held_only_by
 
 __all__ = [
     "Relay",

@@ -1,0 +1,2 @@
+"""What keeps the hub's accounts apart and the hub itself whole: each lab's own network, processes
+tied to the hub, bounded removals, locks and routes no other account can take."""
