@@ -7,9 +7,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from .build.proxy import proxy_argv
 from .guard.tied import tied_command
 from .plan import HubPlan
+from .provision.proxy import proxy_argv
 from .singleuser import DEFAULT_URL
 
 __all__ = ["configure"]

@@ -22,16 +22,6 @@ from ..core.ports import free_port
 from ..core.procfs import pid_namespace
 from ..core.signalling import send
 from ..processes.children import owner_alive, owner_tag
-from .build.accounts import ensure_accounts, ensure_system_account, refuse_system_accounts
-from .build.environment import build_environment, check_world_executable
-from .build.proxy import (
-    PROXY_API_SOCKET,
-    forget_stale_proxy,
-    install_proxy,
-    missing_npm,
-    proxy_command,
-)
-from .build.settings import HUB_YAML, HubSettings, load_hub_settings
 from .guard.tied import tied_preexec
 from .guard.tree_removal import remove_tree
 from .guard.wall import wall_problem
@@ -44,6 +34,16 @@ from .progress_service import (
     records_folder,
     start_service,
 )
+from .provision.accounts import ensure_accounts, ensure_system_account, refuse_system_accounts
+from .provision.environment import build_environment, check_world_executable
+from .provision.proxy import (
+    PROXY_API_SOCKET,
+    forget_stale_proxy,
+    install_proxy,
+    missing_npm,
+    proxy_command,
+)
+from .provision.settings import HUB_YAML, HubSettings, load_hub_settings
 
 __all__ = ["forget_stale_wall_folders", "run_hub"]
 

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import quote
 
-from .build.proxy import PROXY_API_SOCKET
+from .provision.proxy import PROXY_API_SOCKET
 
 __all__ = ["PLAN_ENV", "HubPlan", "read_plan", "write_plan"]
 

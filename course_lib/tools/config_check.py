@@ -18,7 +18,7 @@ from ..config.simulation import SimulationSettings
 from ..config.together import check_files_together
 from ..core.errors import ConfigError, CourseError
 from ..core.paths import config_dir, learner_notebooks_dir
-from ..hub.build.settings import HubSettings
+from ..hub.provision.settings import HubSettings
 from ..lessons.texts import stale_notebooks
 
 __all__ = [

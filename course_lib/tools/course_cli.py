@@ -29,8 +29,8 @@ def _lab(args: argparse.Namespace) -> int:
 
 
 def _hub(args: argparse.Namespace) -> int:
-    from ..hub.build.settings import HUB_YAML
     from ..hub.launcher import run_hub
+    from ..hub.provision.settings import HUB_YAML
 
     parser = argparse.ArgumentParser(prog="python -m course_lib hub")
     parser.add_argument("--config", type=Path, default=HUB_YAML, help="the class's hub.yaml")

@@ -109,8 +109,8 @@ def start_prebuild() -> ChildProcess:
     nothing left to do; a hub in a network of its own reaches no registry)."""
     code = _AHEAD + (
         "import sys; from pathlib import Path\n"
-        "from course_lib.hub.build.environment import build_environment\n"
-        "from course_lib.hub.build.proxy import install_proxy\n"
+        "from course_lib.hub.provision.environment import build_environment\n"
+        "from course_lib.hub.provision.proxy import install_proxy\n"
         "build_environment(Path(sys.argv[1]), Path(sys.argv[2]))\n"
         "install_proxy(Path(sys.argv[1]))\n"
     )

@@ -25,7 +25,6 @@ import requests
 from hub_sign_in import sign_in
 
 from course_lib.core.ports import free_port
-from course_lib.hub.build.proxy import PROXY_API_SOCKET, install_proxy
 from course_lib.hub.progress import (
     PROGRESS_HOLDER_ENV,
     PROGRESS_URL_ENV,
@@ -35,6 +34,7 @@ from course_lib.hub.progress import (
     service_spec,
 )
 from course_lib.hub.progress_service import bind_service_socket, start_service, stop_service
+from course_lib.hub.provision.proxy import PROXY_API_SOCKET, install_proxy
 from course_lib.processes.children import set_parent_death_signal
 
 LEARNERS = ("alice", "bob", "carol")
@@ -121,7 +121,7 @@ class ClassHub:
         # tied to the hub, as in the class hub: the command names its parent, the hub, so it
         # is written in the hub's own process, where this file runs
         lines += [
-            "from course_lib.hub.build.proxy import proxy_argv",
+            "from course_lib.hub.provision.proxy import proxy_argv",
             "from course_lib.hub.guard.tied import tied_command",
             f"c.ConfigurableHTTPProxy.command = tied_command(*proxy_argv({self.proxy!r}))",
         ]

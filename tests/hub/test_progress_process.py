@@ -24,8 +24,6 @@ from class_hub import hub_environment, start_prebuild
 from course_lib.core.paths import REPO_ROOT
 from course_lib.core.procfs import pid_alive
 from course_lib.core.waiting import wait_until
-from course_lib.hub.build.accounts import ensure_system_account
-from course_lib.hub.build.settings import HubSettings
 from course_lib.hub.launcher import NO_WALL_ENV, _plan
 from course_lib.hub.progress import SERVICE_NAME, service_environment
 from course_lib.hub.progress_service import (
@@ -36,6 +34,8 @@ from course_lib.hub.progress_service import (
     start_service,
     stop_service,
 )
+from course_lib.hub.provision.accounts import ensure_system_account
+from course_lib.hub.provision.settings import HubSettings
 
 ROOT_ONLY = pytest.mark.skipif(os.geteuid() != 0, reason="an account of its own needs root")
 

@@ -4,7 +4,6 @@ install configurable-http-proxy", a rerun in the suite when two hub tests starte
 
 from __future__ import annotations
 
-import fcntl
 import shutil
 import threading
 import time
@@ -12,7 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.hub.build.proxy import install_proxy, proxy_command
+from course_lib.hub.guard.locks import hub_lock
+from course_lib.hub.provision.proxy import install_proxy, proxy_command
 
 pytestmark = [
     pytest.mark.slow,
@@ -22,8 +22,7 @@ pytestmark = [
 
 def test_an_install_waits_while_another_one_is_at_work(tmp_path: Path) -> None:
     done: list[Path] = []
-    with open(tmp_path / ".proxy.lock", "w") as lock:  # another hub's install under way
-        fcntl.flock(lock, fcntl.LOCK_EX)
+    with hub_lock(tmp_path, "proxy", "an install"):  # another hub's install under way
         thread = threading.Thread(target=lambda: done.append(install_proxy(tmp_path)))
         thread.start()
         time.sleep(1.0)

@@ -5,7 +5,7 @@ each request to such a target on a connection of its own, which the server close
 answered; a write of the proxy's still pending then failed (EPIPE) and the learner got a 503
 for a request the server had carried out: "Error Starting Kernel: 503 Service Unavailable" in
 a class-hub browser test, and in 24 of 400 PATCH requests here. The course's proxy command
-(course_lib/hub/build/proxy.py: proxy_argv) gives such targets a keep-alive agent.
+(course_lib/hub/provision/proxy.py: proxy_argv) gives such targets a keep-alive agent.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import requests
 
 from course_lib.core.ports import free_port
 from course_lib.core.waiting import wait_until
-from course_lib.hub.build.proxy import proxy_argv
+from course_lib.hub.provision.proxy import proxy_argv
 from course_lib.processes.children import spawn
 from course_lib.tools.testing import independent_env
 

@@ -14,7 +14,7 @@ import pytest
 from unix_accounts import new_home
 
 from course_lib.core.errors import CourseError
-from course_lib.hub.build.accounts import PASSWORDS_FILE, Account, ensure_accounts
+from course_lib.hub.provision.accounts import PASSWORDS_FILE, Account, ensure_accounts
 
 pytestmark = pytest.mark.skipif(os.geteuid() != 0, reason="creates real Unix accounts")
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import subprocess
 from pathlib import Path
 
-from course_lib.hub.build.environment import source_files
+from course_lib.hub.provision.environment import source_files
 
 
 def test_an_untracked_file_of_the_clone_is_never_copied_for_the_learners(tmp_path: Path) -> None:

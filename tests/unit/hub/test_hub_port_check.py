@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 
 from course_lib.core.errors import ConfigError
-from course_lib.hub.build.settings import HUB_YAML, load_hub_settings
 from course_lib.hub.launcher import _check_port
+from course_lib.hub.provision.settings import HUB_YAML, load_hub_settings
 
 
 def _time_wait_on_a_free_port() -> int:

@@ -10,10 +10,10 @@ from urllib.parse import unquote
 from jupyterhub.objects import Server
 from traitlets.config import Config
 
-from course_lib.hub.build.proxy import PINS_DIR, PRELOAD, PROXY_API_SOCKET, proxy_command
 from course_lib.hub.hub_config import configure
 from course_lib.hub.plan import HubPlan
 from course_lib.hub.progress import PROGRESS_HOLDER_ENV
+from course_lib.hub.provision.proxy import PINS_DIR, PRELOAD, PROXY_API_SOCKET, proxy_command
 
 
 def _configured(tmp_path: Path) -> Config:

@@ -15,7 +15,7 @@ import pytest
 
 from course_lib.core.errors import CourseError
 from course_lib.core.paths import REPO_ROOT
-from course_lib.hub.build.environment import check_world_executable
+from course_lib.hub.provision.environment import check_world_executable
 
 needs_root = pytest.mark.skipif(os.geteuid() != 0, reason="the hub's checks run as root")
 

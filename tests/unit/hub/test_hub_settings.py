@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from course_lib.core.errors import ConfigError
-from course_lib.hub.build.settings import HUB_YAML, load_hub_settings
+from course_lib.hub.provision.settings import HUB_YAML, load_hub_settings
 
 GOOD = """\
 learners:

@@ -3,7 +3,6 @@ every Unix user may execute (a root-private interpreter would give them "Permiss
 
 from __future__ import annotations
 
-import fcntl
 import filecmp
 import os
 import shutil
@@ -14,6 +13,7 @@ from pathlib import Path
 
 from ...core.errors import CourseError
 from ...core.paths import REPO_ROOT
+from ..guard.locks import LOCKS_FOLDER, hub_lock
 
 __all__ = [
     "HUB_ONLY",
@@ -125,6 +125,7 @@ def _open_to_all(root: Path, keep: frozenset[Path] = frozenset()) -> None:
     """Let every user read (and enter) what the build wrote, whatever root's umask was; leave
     the paths in `keep` as they are."""
     for folder, dirs, files in os.walk(root):
+        dirs[:] = [d for d in dirs if Path(folder, d) not in keep]  # kept whole, as it is
         for name in [*dirs, *files]:
             path = Path(folder, name)
             if path.is_symlink() or path in keep:
@@ -154,8 +155,7 @@ def build_environment(
                 hint="set `environment:` in config/hub.yaml to a folder outside private homes, "
                 "e.g. /opt/ros2-params-course.",
             )
-    with open(environment / ".build.lock", "w") as lock:  # one build at a time
-        fcntl.flock(lock, fcntl.LOCK_EX)
+    with hub_lock(environment, "build", "the build of the learners' environment", say=say):
         return _build_locked(environment, python, say)
 
 
@@ -180,5 +180,6 @@ def _build_locked(environment: Path, python: Path, say: Callable[[str], None]) -
             hint="fix what it names (it is the same set-up as `make lab`), then retry.",
         )
     # the copy is the clone itself when the environment holds it: its hub.yaml stays closed
-    _open_to_all(environment, keep=frozenset(copy / relative for relative in HUB_ONLY))
+    kept = {copy / relative for relative in HUB_ONLY} | {environment / LOCKS_FOLDER}
+    _open_to_all(environment, keep=frozenset(kept))
     return copy

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import fcntl
 import os
 import shutil
 import subprocess
@@ -10,6 +9,7 @@ from pathlib import Path
 
 from ...core.errors import CourseError
 from ...core.procfs import start_time
+from ..guard.locks import hub_lock
 
 __all__ = [
     "PINS_DIR",
@@ -62,8 +62,7 @@ def install_proxy(environment: Path) -> Path:
     return the path of its command. One install at a time: two `npm ci` in one folder (two
     hubs started at once on a fresh host) fail each other."""
     environment.mkdir(parents=True, exist_ok=True)
-    with open(environment / ".proxy.lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
+    with hub_lock(environment, "proxy", "the install of the hub's proxy"):
         return _install_locked(environment)
 
 

@@ -1,4 +1,4 @@
-// Loaded into the hub's proxy (node --import, course_lib/hub/build/proxy.py: proxy_argv).
+// Loaded into the hub's proxy (node --import, course_lib/hub/provision/proxy.py: proxy_argv).
 //
 // configurable-http-proxy sends each request for a Unix-socket target (a learner's server
 // behind the wall) on a connection of its own with "Connection: close". The server closes

@@ -1,0 +1,1 @@
+"""What `make hub` sets up on the host: the learners' environment, the proxy, the accounts."""
