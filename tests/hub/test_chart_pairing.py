@@ -47,7 +47,7 @@ HUB_CONFIG = """\
 import os
 import sys
 
-from jupyterhub.provision.proxy import Proxy
+from jupyterhub.proxy import Proxy
 from jupyterhub.spawner import SimpleLocalProcessSpawner
 
 from course_lib.hub.guard.tied import tie_to_parent

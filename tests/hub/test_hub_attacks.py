@@ -90,7 +90,7 @@ _UDP_ONLY = """<?xml version="1.0" encoding="UTF-8"?>
 
 
 def _intruder_env(hub: ClassHub, domain: str) -> dict[str, str]:
-    venv_bin = hub.provision.environment / "course" / ".venv" / "bin"
+    venv_bin = hub.environment / "course" / ".venv" / "bin"
     account = pwd.getpwnam(INTRUDER)
     profile = Path(account.pw_dir) / "udp_only.xml"
     profile.write_text(_UDP_ONLY, encoding="utf-8")

@@ -26,7 +26,7 @@ from hub_accounts import as_account, sign_in
 
 from course_lib.core.paths import REPO_ROOT
 from course_lib.hub.launcher import WALL_PREFIX
-from course_lib.hub.provision.environment import source_files
+from course_lib.hub.environment import source_files
 
 pytestmark = [pytest.mark.slow, pytest.mark.learners_env]
 
@@ -140,7 +140,7 @@ def _hub_folders(hub: ClassHub) -> list[str]:
     run = Path("/run") if Path("/run").is_dir() else Path(tempfile.gettempdir())
     sockets = run / f"{WALL_PREFIX}{hub.port}"
     progress = hub.state.parent / f"{hub.state.name}-progress"
-    return [str(p) for p in (hub.provision.environment, sockets, hub.state, progress)]
+    return [str(p) for p in (hub.environment, sockets, hub.state, progress)]
 
 
 def test_no_account_reads_the_demo_password_in_the_hubs_files(
@@ -149,7 +149,7 @@ def test_no_account_reads_the_demo_password_in_the_hubs_files(
     """config/hub.yaml was copied into the learners' environment and opened to all (0644),
     though the instructor's was 0600: any account could sign in as any learner."""
     sign_in(hub, NEW)  # their server runs: its sockets and runtime folders are there too
-    course_yaml = str(hub.provision.environment / "course" / "config" / "course.yaml")
+    course_yaml = str(hub.environment / "course" / "config" / "course.yaml")
     for name in (NEW, OUTSIDER):
         done = as_account(
             name, [DEBIAN_PYTHON, "-c", _SEARCH, *_hub_folders(hub)], {}, 600.0, stdin=password
@@ -158,9 +158,9 @@ def test_no_account_reads_the_demo_password_in_the_hubs_files(
         result = json.loads(done.stdout)
         assert result["found"] == [], f"{name} read the demo's password in {result['found']}"
         assert course_yaml in result["read"], f"{name} searched nothing of the environment"
-    assert not (hub.provision.environment / "course" / "config" / "hub.yaml").exists()
+    assert not (hub.environment / "course" / "config" / "hub.yaml").exists()
     # what a lab reads of config/ is all there: `make doctor`'s check passes without hub.yaml
-    python = str(hub.provision.environment / "course" / ".venv" / "bin" / "python")
+    python = str(hub.environment / "course" / ".venv" / "bin" / "python")
     checked = as_account(NEW, [python, "-m", "course_lib", "check-config"], {}, 120.0)
     assert checked.returncode == 0, checked.stdout + checked.stderr
     assert "course.yaml, simulation.yaml are valid" in checked.stdout, checked.stdout
