@@ -80,6 +80,7 @@ def configure(c: Any, plan: HubPlan) -> None:
     c.Spawner.start_timeout = 120
     c.CourseSpawner.wall = plan.wall
     c.CourseSpawner.sockets_dir = plan.sockets
+    c.CourseSpawner.state_dir = plan.state  # its record of whose runtime folders are whose
     c.CourseSpawner.relay_ports = [plan.hub_port, plan.progress_port]  # the API, progress
     c.Spawner.http_timeout = 120
     from .spawner import stop_leftovers_hook  # imports JupyterHub: the hub's side only

@@ -22,6 +22,7 @@ from ..core.ports import free_port
 from ..core.procfs import pid_namespace
 from ..core.signalling import send
 from ..processes.children import owner_alive, owner_tag
+from .guard.runtime_leftovers import remove_orphaned_folders
 from .guard.tied import tied_preexec
 from .guard.tree_removal import remove_tree
 from .guard.wall import wall_problem
@@ -239,6 +240,8 @@ def _prepare(settings: HubSettings) -> tuple[Path, Path, Path]:
     state.chmod(0o700)
     course = build_environment(Path(settings.environment), Path(settings.python))
     proxy = install_proxy(Path(settings.environment))
+    for removal in remove_orphaned_folders():  # before an account made now takes their uid
+        print(removal.line())
     accounts, passwords = ensure_accounts(
         settings.users, state, with_password=settings.authenticator == "pam"
     )

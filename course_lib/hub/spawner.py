@@ -19,6 +19,8 @@ from traitlets import Bool, Int, List, Unicode
 from ..core.errors import DomainUnavailableError
 from ..core.signalling import send
 from ..processes.domain import DOMAIN_ENV, candidate_domains, domain_in_use
+from .guard.routes import forget_route, pin_route
+from .guard.runtime_leftovers import account_identity, clear_for_account
 from .guard.tied import tie_to_parent
 from .guard.wall import Relay, enter_own_network
 
@@ -81,6 +83,9 @@ class CourseSpawner(LocalProcessSpawner):
     relay_ports = List(Int(), help="host ports on 127.0.0.1 relayed into each lab").tag(
         config=True
     )
+    state_dir = Unicode("", help="the hub's root-only state folder (runtime folders' record)").tag(
+        config=True
+    )
 
     domains: ClassVar[HubDomains] = HubDomains()
     _relay: Relay | None = None
@@ -126,6 +131,7 @@ class CourseSpawner(LocalProcessSpawner):
         return env
 
     async def start(self) -> Any:
+        self._clear_runtime_leftovers()
         self.domain_id = self.domains.take(self.user.name, walled=self.wall)
         if not self.wall:
             address = await super().start()
@@ -137,11 +143,26 @@ class CourseSpawner(LocalProcessSpawner):
         self._network = os.stat(f"/proc/{self.pid}/ns/net").st_ino
         self._relay = Relay(self.pid, list(self.relay_ports), self.log.warning)
         await self._relay.start()
-        url = f"http+unix://{quote(str(self.socket_path()), safe='')}"
+        await self._wait_until_listening()
+        # routed to the socket the server listens on, whatever the learner's folder holds later
+        route = pin_route(
+            self.socket_path(), Path(self.sockets_dir), self.user.name, self._account().pw_uid
+        )
+        url = f"http+unix://{quote(str(route), safe='')}"
         # JupyterHub keeps only ip and port of a server; its address on a socket is this
         self.server.connect_url = url
-        await self._wait_until_listening()
         return url
+
+    def _account(self) -> pwd.struct_passwd:
+        return pwd.getpwnam(self.user.name)
+
+    def _clear_runtime_leftovers(self) -> None:
+        """Remove the runtime folders another account with the learner's uid left
+        (course_lib.hub.guard.runtime_leftovers), as root, before their server starts."""
+        if self.state_dir:
+            uid, identity = account_identity(self.user.name)
+            for removal in clear_for_account(uid, identity, Path(self.state_dir)):
+                self.log.warning(removal.line())
 
     async def _wait_until_listening(self) -> None:
         """Return once the server accepts connections, or after `http_timeout` (the hub's own
@@ -180,6 +201,8 @@ class CourseSpawner(LocalProcessSpawner):
             if self._relay is not None:
                 self._relay.close()
                 self._relay = None
+            if self.wall:
+                forget_route(Path(self.sockets_dir), self.user.name)
             self.domains.give_back(self.user.name)
 
     async def stop_leftovers(self) -> None:

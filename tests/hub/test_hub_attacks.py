@@ -18,14 +18,18 @@ import os
 import pwd
 import re
 import subprocess
+import tempfile
 from collections.abc import Iterator
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
-from class_hub import ClassHub
+import requests
+from class_hub import ClassHub, server_token
 from hub_accounts import as_account, environ_of, lab_terminal, server_pid, sign_in, tcp_listeners
 from lab_terminal import RestTerminal
 
+from course_lib.hub.launcher import WALL_PREFIX
 from course_lib.processes.domain import candidate_domains, lease_port
 
 OWN_NETWORK_ENV = "COURSE_TEST_OWN_NETWORK"
@@ -87,6 +91,12 @@ _UDP_ONLY = """<?xml version="1.0" encoding="UTF-8"?>
   </participant>
 </profiles>
 """
+
+
+def server_socket(hub: ClassHub, name: str) -> Path:
+    """Return the path of `name`'s server socket, in their folder of the hub's sockets."""
+    run = Path("/run") if Path("/run").is_dir() else Path(tempfile.gettempdir())
+    return run / f"{WALL_PREFIX}{hub.port}" / name / "server.sock"
 
 
 def _intruder_env(hub: ClassHub, domain: str) -> dict[str, str]:
@@ -252,3 +262,33 @@ def test_the_progress_service_runs_as_its_own_account_not_root(class_hub: ClassH
     assert [uid for uid, _ in found] == [account], found
     assert account != 0 and account not in learners
     assert all(b"--listen-fd" in command for _, command in found), "handed its socket"
+
+
+def _status(url: str, headers: dict[str, str]) -> int:
+    return requests.get(url, headers=headers, timeout=30).status_code
+
+
+def test_a_link_in_a_learners_socket_folder_routes_nothing_to_another_server(
+    class_hub: ClassHub, victim_lab: RestTerminal
+) -> None:
+    """The proxy (root) followed a symbolic link the intruder put in place of their own
+    server.sock to the victim's socket: 99 of 120 of the intruder's requests were answered by
+    the victim's server, and kept-alive connections kept that route once the link was gone.
+    The hub routes to a hard link of the socket the intruder's server listens on, made by root
+    in a folder of its own: every request reaches the intruder's own server."""
+    sign_in(class_hub, INTRUDER)
+    sockets = server_socket(class_hub, INTRUDER).parent
+    victims = server_socket(class_hub, VICTIM)
+    swap = f"rm -f {sockets}/server.sock && ln -s {victims} {sockets}/server.sock && echo linked"
+    swapped = as_account(INTRUDER, ["/bin/sh", "-c", swap], {})
+    assert swapped.stdout.strip() == "linked", swapped.stderr
+    status = f"{class_hub.url}/user/{INTRUDER}/api/status"
+    token = {"Authorization": f"token {server_token(INTRUDER)}"}
+    # at once, as a lab's page does: the proxy opens new connections to the route
+    with ThreadPoolExecutor(24) as pool:
+        codes = list(pool.map(lambda _: _status(status, token), range(120)))
+    assert codes.count(200) == 120, f"answered elsewhere: {codes.count(200)} of 120 were 200"
+    gone = as_account(INTRUDER, ["rm", "-f", f"{sockets}/server.sock"], {})
+    assert gone.returncode == 0, gone.stderr
+    again = [requests.get(status, headers=token, timeout=30).status_code for _ in range(20)]
+    assert again == [200] * 20, again

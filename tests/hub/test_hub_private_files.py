@@ -26,7 +26,7 @@ from hub_accounts import as_account, sign_in
 
 from course_lib.core.paths import REPO_ROOT
 from course_lib.hub.launcher import WALL_PREFIX
-from course_lib.hub.environment import source_files
+from course_lib.hub.provision.environment import source_files
 
 pytestmark = [pytest.mark.slow, pytest.mark.learners_env]
 
