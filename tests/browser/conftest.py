@@ -137,3 +137,11 @@ def lab_page(browser, request: pytest.FixtureRequest) -> Iterator[object]:  # ty
             tab.close()
     finally:
         server.stop()
+
+
+@pytest.fixture(scope="session")
+def axe_js(tmp_path_factory: pytest.TempPathFactory) -> str:
+    """Return axe-core's script, installed from npm once per run (shared by the workers)."""
+    from accessibility import axe_source
+
+    return axe_source(tmp_path_factory.getbasetemp().parent / "axe-core")
