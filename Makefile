@@ -55,8 +55,8 @@ doctor:  ## Check the install works (rclpy, tf2_msgs, the camera), say what is s
 	@test -x $(PY) || { echo "No environment in $(VENV)/ yet: run \`make setup\`."; exit 1; }
 	@$(PY) -m course_lib doctor
 
-stop: ## Stop this user's course processes (labs, simulations, viewers, nodes, daemons)
-	$(PY) -m course_lib stop
+stop: ## Stop the course processes this clone started (labs, simulations, viewers, nodes, daemons; ARGS=--all: every clone's)
+	$(PY) -m course_lib stop $(ARGS)
 
 # slim_imports.pth: packages load without the parts of their __init__ a process never uses
 # (a message generator, IPython, httpx's CLI, every message of a package; course_lib/tools/slim_imports.py).

@@ -29,9 +29,11 @@ from typing import Any, TypeVar
 
 from ..core import procfs
 from ..core.errors import ProcessStartError
+from ..core.paths import REPO_ROOT
 from ..core.signalling import send
 
 __all__ = [
+    "CLONE_ENV",
     "NAME_ENV",
     "OWNER_ENV",
     "OWNER_NS_ENV",
@@ -47,6 +49,8 @@ __all__ = [
 OWNER_ENV = "COURSE_OWNER"
 OWNER_NS_ENV = "COURSE_OWNER_NS"  # the PID namespace in which COURSE_OWNER's pid is meant
 NAME_ENV = "COURSE_PROCESS"
+# The clone (its folder) whose course started the process: `make stop` stops its own clone's.
+CLONE_ENV = "COURSE_CLONE"
 # What `spawn` ran, as a digest of its command line: a process that merely inherited the tags
 # (a learner's program started from a lab terminal) runs another command.
 SPAWNED_ENV = "COURSE_SPAWNED"
@@ -364,6 +368,7 @@ def spawn(
     child_env[OWNER_NS_ENV] = procfs.pid_namespace()
     child_env[NAME_ENV] = name
     child_env[SPAWNED_ENV] = command_tag(argv)
+    child_env[CLONE_ENV] = str(REPO_ROOT)
     child_env.setdefault("PYTHONUNBUFFERED", "1")
     pipe = subprocess.PIPE if capture else None
 

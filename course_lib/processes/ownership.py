@@ -24,8 +24,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..core import procfs
-from ..core.paths import runtime_dir
+from ..core.paths import REPO_ROOT, runtime_dir
 from .children import (
+    CLONE_ENV,
     NAME_ENV,
     OWNER_ENV,
     OWNER_NS_ENV,
@@ -77,6 +78,16 @@ class ProcessInfo:
     @property
     def owner_namespace(self) -> str:
         return self.env.get(OWNER_NS_ENV, "")
+
+    @property
+    def clone(self) -> str:
+        """Return the folder of the clone whose course started this process: its tag, or for
+        an untagged one (started before clones were tagged) the clone its command runs from
+        when that is this one; "" when unknown."""
+        if self.env.get(CLONE_ENV):
+            return self.env[CLONE_ENV]
+        here = f"{REPO_ROOT}{os.sep}"
+        return str(REPO_ROOT) if any(arg.startswith(here) for arg in self.argv) else ""
 
 
 @dataclass(frozen=True)

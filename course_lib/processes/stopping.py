@@ -1,7 +1,9 @@
 """`make stop`: stop the course's processes like Ctrl-C, then harder, and say what stopped.
 
 It stops what the course started and the ROS processes of a stopped lab's domain; a learner's
-own programs started from a lab terminal keep running and are listed.
+own programs started from a lab terminal keep running and are listed. Its reach is the clone
+it runs from: the course processes another clone started (another lab, a class hub and its
+learners' labs, their daemons) keep running and are listed, unless `everything` is asked for.
 
 Which processes count is ownership.py's rule. Each one gets SIGINT (only those whose parent is
 not itself being stopped: a lab stops its JupyterLab, a launch its nodes), then whatever still
@@ -19,6 +21,7 @@ import contextlib
 import signal
 from dataclasses import dataclass, field
 
+from ..core.paths import REPO_ROOT
 from ..core.signalling import send
 from ..core.waiting import wait_until
 from .ownership import CourseProcess, course_processes, current_lab, own_programs, read_process
@@ -48,6 +51,7 @@ class StopReport:
     left: list[CourseProcess] = field(default_factory=list)
     kept_lab: int | None = None
     kept_own: list[CourseProcess] = field(default_factory=list)
+    kept_other: list[CourseProcess] = field(default_factory=list)  # another clone's
     swept: Swept = field(default_factory=Swept)
 
     def render(self) -> str:
@@ -69,6 +73,13 @@ class StopReport:
                 "(not by the course, no ROS process):"
             )
             lines += [f"  {' '.join(p.info.argv)[:120]} (pid {p.pid})" for p in self.kept_own]
+        if self.kept_other:
+            clones = sorted({p.info.clone or "a clone it does not name" for p in self.kept_other})
+            lines.append(
+                f"Left running {len(self.kept_other)} course process(es) of another clone "
+                f"({', '.join(clones)}); `python -m course_lib stop --all` stops them too:"
+            )
+            lines += [f"  {p.name} (pid {p.pid})" for p in self.kept_other]
         if self.kept_lab is not None:
             lines.append(
                 f"This terminal belongs to the lab (pid {self.kept_lab}): its JupyterLab and "
@@ -122,17 +133,24 @@ def stop_processes(found: list[CourseProcess], grace_s: float, report: StopRepor
     report.left += pending.values()
 
 
-def stop_course(*, grace_s: float = GRACE_S, rounds: int = 3) -> StopReport:
-    """Stop this user's course processes (not this command, its ancestors or its lab)."""
+def stop_course(
+    *, grace_s: float = GRACE_S, rounds: int = 3, everything: bool = False
+) -> StopReport:
+    """Stop this user's course processes of this clone (of every clone with `everything`),
+    never this command, its ancestors or its lab."""
     report = StopReport(kept_lab=current_lab())
+    here = str(REPO_ROOT)
     seen: set[int] = set()
     for _ in range(rounds):  # a stopped process may leave children that are leftovers now
         found = [p for p in course_processes() if p.pid not in seen]
         if not found:
             break
         seen |= {p.pid for p in found}
-        stop_processes(found, grace_s, report)
+        mine = [p for p in found if everything or p.info.clone == here]
+        report.kept_other += [p for p in found if p not in mine]
+        stop_processes(mine, grace_s, report)
         grace_s = TERM_S
+    report.kept_other = [p for p in report.kept_other if _same(p)]
     report.kept_own = own_programs()
     report.swept = sweep_stale_segments()
     return report

@@ -95,10 +95,20 @@ def _doctor(_args: argparse.Namespace) -> int:
     return 0 if checked.ok and not broken else 1
 
 
-def _stop(_args: argparse.Namespace) -> int:
+def _stop(args: argparse.Namespace) -> int:
     from .stop import stop_all
 
-    report = stop_all()
+    parser = argparse.ArgumentParser(
+        prog="python -m course_lib stop",
+        description="Stop the course processes this clone started (labs, simulations, 3D "
+        "views, nodes, ros2 daemons), like Ctrl-C, then harder; say what stopped. A learner's "
+        "own programs and other clones' course processes keep running and are listed.",
+    )
+    parser.add_argument(
+        "--all", action="store_true", help="stop the course processes of every clone too"
+    )
+    options = parser.parse_args(args.extra)  # an unknown argument: the usage, nothing stopped
+    report = stop_all(everything=options.all)
     print(report.render())
     return 1 if report.left else 0
 

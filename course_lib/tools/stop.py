@@ -7,6 +7,7 @@ from ..processes.stopping import StopReport, stop_course
 __all__ = ["stop_all"]
 
 
-def stop_all() -> StopReport:
-    """Stop this user's course processes: SIGINT, SIGTERM, SIGKILL (see processes/stopping.py)."""
-    return stop_course()
+def stop_all(*, everything: bool = False) -> StopReport:
+    """Stop this user's course processes of this clone (of every clone with `everything`):
+    SIGINT, SIGTERM, SIGKILL (see processes/stopping.py)."""
+    return stop_course(everything=everything)

@@ -18,7 +18,7 @@ from pathlib import Path
 
 from ...core import procfs
 from ...core.waiting import wait_until
-from ...processes.children import OWNER_ENV, owner_tag
+from ...processes.children import CLONE_ENV, OWNER_ENV, owner_tag
 from .discovery import of_domain_here
 from .wire import (
     DaemonUnavailable,
@@ -78,6 +78,7 @@ def spawn_detached(env: Mapping[str, str]) -> None:
     child_env = {**env, IDLE_ENV: env.get(IDLE_ENV, DETACHED_IDLE_S)}
     child_env[OWNER_ENV] = owner_tag(_owner_pid())
     repo_root = str(Path(__file__).resolve().parents[3])
+    child_env[CLONE_ENV] = repo_root
     child_env["PYTHONPATH"] = os.pathsep.join(
         p for p in (repo_root, child_env.get("PYTHONPATH", "")) if p
     )
