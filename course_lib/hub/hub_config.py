@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from .guard.tied import tied_command
-from .plan import HubPlan
+from .plan import HUB_SOCKET, PROXY_SOCKET, HubPlan
 from .provision.proxy import proxy_argv
 from .singleuser import DEFAULT_URL
 
@@ -35,7 +35,7 @@ def _idle_culler(plan: HubPlan) -> tuple[list[dict[str, Any]], list[dict[str, An
     service = {
         "name": "idle-culler",
         "command": tied_command(sys.executable, "-m", "jupyterhub_idle_culler",
-                         f"--timeout={plan.idle_minutes * 60}"),
+                         f"--timeout={plan.idle_minutes * 60}", f"--url={plan.hub_api_url}"),
     }  # fmt: skip
     role = {
         "name": "idle-culler",
@@ -48,10 +48,11 @@ def _idle_culler(plan: HubPlan) -> tuple[list[dict[str, Any]], list[dict[str, An
 def configure(c: Any, plan: HubPlan) -> None:
     """Fill JupyterHub's config object `c` for the class described by `plan`."""
     state = Path(plan.state)
-    c.JupyterHub.ip = plan.ip
-    c.JupyterHub.port = plan.port
-    c.JupyterHub.hub_ip = "127.0.0.1"
-    c.JupyterHub.hub_port = plan.hub_port
+    # JupyterHub and its proxy listen on Unix sockets only root reaches; the launcher holds
+    # the TCP ports (plan.port, plan.hub_port) and counts each account's connections there
+    c.JupyterHub.bind_url = plan.socket_url(PROXY_SOCKET)
+    c.JupyterHub.hub_bind_url = c.JupyterHub.hub_connect_url = plan.socket_url(HUB_SOCKET)
+    c.Spawner.hub_connect_url = plan.hub_api_url.removesuffix("/hub/api")
     c.JupyterHub.db_url = f"sqlite:///{state / 'jupyterhub.sqlite'}"
     c.JupyterHub.cookie_secret_file = str(state / "jupyterhub_cookie_secret")
     c.JupyterHub.cleanup_servers = True  # the hub stopping stops every learner's server

@@ -18,20 +18,19 @@ from pathlib import Path
 import yaml
 
 from ..core.errors import ConfigError, CourseError
-from ..core.ports import free_port
 from ..core.procfs import pid_namespace
 from ..core.signalling import send
 from ..processes.children import owner_alive, owner_tag
+from .guard.gate import BACKLOG, Door, Gate, open_files_limit, unix_listener
 from .guard.runtime_leftovers import remove_orphaned_folders
 from .guard.tied import tied_preexec
 from .guard.tree_removal import remove_tree
 from .guard.wall import wall_problem
-from .plan import PLAN_ENV, HubPlan, write_plan
+from .plan import HUB_SOCKET, PLAN_ENV, PROGRESS_SOCKET, PROXY_SOCKET, HubPlan, write_plan
 from .progress import service_environment
 from .progress_service import (
     SERVICE_ACCOUNT,
     KeptService,
-    bind_service_socket,
     records_folder,
     start_service,
 )
@@ -71,19 +70,25 @@ def _key_line(path: Path, key: str) -> int | None:
 
 def _check_port(settings: HubSettings, source: Path) -> None:
     """Refuse a public port something listens on; connections of a hub stopped moments ago
-    (TIME_WAIT) do not count, as the proxy binds with SO_REUSEADDR too."""
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
-        probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-        try:
-            probe.bind((settings.ip, settings.port))
-        except OSError as err:
-            raise ConfigError(
-                str(source),
-                _key_line(source, "port"),
-                "port",
-                f"port {settings.port} on {settings.ip} cannot be used: {err.strerror}",
-                "stop what listens there, or set another `port:`.",
-            ) from None
+    (TIME_WAIT) do not count (SO_REUSEADDR)."""
+    _hold_port(settings, source).close()
+
+
+def _hold_port(settings: HubSettings, source: Path) -> socket.socket:
+    """Return the public port, listening (the gate serves it), or raise as _check_port."""
+    family = socket.AF_INET6 if ":" in settings.ip else socket.AF_INET
+    dual = settings.ip == "::" and socket.has_dualstack_ipv6()
+    try:
+        address = (settings.ip, settings.port)
+        return socket.create_server(address, family=family, backlog=BACKLOG, dualstack_ipv6=dual)
+    except OSError as err:
+        raise ConfigError(
+            str(source),
+            _key_line(source, "port"),
+            "port",
+            f"port {settings.port} on {settings.ip} cannot be used: {err.strerror}",
+            "stop what listens there, or set another `port:`.",
+        ) from None
 
 
 def _check_state(settings: HubSettings, source: Path) -> None:
@@ -161,9 +166,16 @@ def forget_stale_wall_folders(run: Path) -> list[Path]:
 
 
 def _plan(
-    settings: HubSettings, state: Path, course: Path, proxy: Path, progress: socket.socket
+    settings: HubSettings,
+    state: Path,
+    course: Path,
+    proxy: Path,
+    progress: socket.socket,
+    *,
+    api: socket.socket | None = None,
 ) -> HubPlan:
-    """Return the hub's plan; the progress service's port is `progress`'s, bound already."""
+    """Return the hub's plan; the progress service's port is `progress`'s and JupyterHub's
+    API port `api`'s, bound already (no `api`: a plan to look at, with none)."""
     admin_password = None
     if settings.authenticator == "shared-password":
         admin_password = secrets.token_urlsafe(32)
@@ -174,7 +186,7 @@ def _plan(
         sockets=sockets,
         ip=settings.ip,
         port=settings.port,
-        hub_port=free_port(),
+        hub_port=api.getsockname()[1] if api is not None else 0,
         progress_port=progress.getsockname()[1],
         progress_token=secrets.token_hex(32),
         authenticator=settings.authenticator,
@@ -195,8 +207,7 @@ def _keep_progress(plan: HubPlan, listener: socket.socket) -> KeptService:
     start it again on the same socket whenever it dies (the caller holds `listener`)."""
     account = ensure_system_account(SERVICE_ACCOUNT)
     db = records_folder(Path(plan.state), account) / "progress.sqlite"
-    api = f"http://127.0.0.1:{plan.hub_port}/hub/api"
-    environment = service_environment(plan.progress_port, plan.progress_token, api)
+    environment = service_environment(plan.progress_port, plan.progress_token, plan.hub_api_url)
     return KeptService(
         lambda: start_service(plan.learner_python, db, listener, environment, account),
         "The progress service",
@@ -253,23 +264,50 @@ def _prepare(settings: HubSettings) -> tuple[Path, Path, Path]:
     note = forget_stale_proxy(state, proxy)
     if note:
         print(note)
+    if not (state / "proxy.pid").exists():  # a killed proxy's socket: its start would fail
+        (state / PROXY_SOCKET).unlink(missing_ok=True)
     return state, course, proxy
+
+
+def _open_gate(settings: HubSettings, plan: HubPlan, ports: list[socket.socket]) -> Gate:
+    """Serve the hub's TCP `ports` (public, API, progress), held here, as doors to its Unix
+    sockets (root's alone), each account's connections counted (guard/gate.py)."""
+    state = Path(plan.state)
+    names = (f"The hub's port {plan.port}", f"JupyterHub's API port {plan.hub_port}",
+             f"The progress service's port {plan.progress_port}")  # fmt: skip
+    sockets = (PROXY_SOCKET, HUB_SOCKET, PROGRESS_SOCKET)
+    doors = [Door(p, str(state / s), n) for p, s, n in zip(ports, sockets, names, strict=True)]
+    gate = Gate(doors, per_peer=settings.connections_per_account, log=_say)
+    gate.start()
+    return gate
+
+
+def _say(line: str) -> None:
+    print(line, flush=True)
 
 
 def run_hub(config: Path = HUB_YAML) -> int:
     """Start the class hub described by `config`; stop it (and every server) on Ctrl-C."""
     settings = load_hub_settings(config)
     _check_before_start(settings, config)
+    open_files_limit()  # as many as the host allows, for the gate, JupyterHub and its proxy
     state, course, proxy = _prepare(settings)
-    # held until the hub has stopped: the service's port is never free for another account
-    with bind_service_socket() as listener:
-        plan_data = _plan(settings, state, course, proxy, listener)
+    # held until the hub has stopped: no port of the hub is ever free for another account
+    with (
+        _hold_port(settings, config) as public,
+        socket.create_server(("127.0.0.1", 0), backlog=BACKLOG) as api,
+        socket.create_server(("127.0.0.1", 0), backlog=BACKLOG) as progress,
+        unix_listener(str(state / PROGRESS_SOCKET)) as behind,
+    ):
+        plan_data = _plan(settings, state, course, proxy, progress, api=api)
         plan = write_plan(plan_data, state / "plan.json")
-        service = _keep_progress(plan_data, listener)
+        gate = _open_gate(settings, plan_data, [public, api, progress])
+        service = _keep_progress(plan_data, behind)
         try:
             return _run_jupyterhub(settings, plan)
         finally:
             service.stop()
+            gate.stop()
             if plan_data.sockets:  # every server has stopped: their socket folders go too
                 remove_tree(plan_data.sockets)
 

@@ -11,9 +11,23 @@ from urllib.parse import quote
 
 from .provision.proxy import PROXY_API_SOCKET
 
-__all__ = ["PLAN_ENV", "HubPlan", "read_plan", "write_plan"]
+__all__ = [
+    "HUB_SOCKET",
+    "PLAN_ENV",
+    "PROGRESS_SOCKET",
+    "PROXY_SOCKET",
+    "HubPlan",
+    "read_plan",
+    "write_plan",
+]
 
 PLAN_ENV = "COURSE_HUB_PLAN"  # names the plan file for jupyterhub_config.py
+# In the state folder (root's alone), behind the launcher's gate (course_lib.hub.guard.gate),
+# which holds the hub's TCP ports: the proxy's public side, JupyterHub's API, the progress
+# service.
+PROXY_SOCKET = "proxy.sock"
+HUB_SOCKET = "hub.sock"
+PROGRESS_SOCKET = "progress.sock"
 
 
 @dataclass(frozen=True)
@@ -22,8 +36,8 @@ class HubPlan:
 
     ip: str
     port: int
-    hub_port: int
-    progress_port: int
+    hub_port: int  # JupyterHub's API and the progress service: TCP ports the launcher's gate
+    progress_port: int  # holds, doors to HUB_SOCKET and PROGRESS_SOCKET
     authenticator: str
     learners: tuple[str, ...]
     admins: tuple[str, ...]
@@ -45,7 +59,16 @@ class HubPlan:
     @property
     def proxy_api_url(self) -> str:
         """Return the proxy's API address, http+unix://<its socket in the state folder>."""
-        return "http+unix://" + quote(str(Path(self.state) / PROXY_API_SOCKET), safe="")
+        return self.socket_url(PROXY_API_SOCKET)
+
+    def socket_url(self, name: str) -> str:
+        """Return http+unix://<the socket `name` in the state folder>."""
+        return "http+unix://" + quote(str(Path(self.state) / name), safe="")
+
+    @property
+    def hub_api_url(self) -> str:
+        """Return JupyterHub's API at its TCP port (the gate's), for servers and services."""
+        return f"http://127.0.0.1:{self.hub_port}/hub/api"
 
 
 def write_plan(plan: HubPlan, path: Path) -> Path:

@@ -117,10 +117,10 @@ def _progress_service(class_hub: ClassHub) -> int | None:
 
 
 def _proxy(class_hub: ClassHub) -> tuple[int, tuple[str, ...]] | None:
-    """Return the pid and command line of this hub's proxy (`--port <the hub's port>`)."""
+    """Return the pid and command line of this hub's proxy (`--socket <its state>/proxy.sock`)."""
     for pid in pids():
         argv = cmdline(pid) or ()
-        ours = ("--port", str(class_hub.port)) in itertools.pairwise(argv)
+        ours = ("--socket", str(class_hub.state / "proxy.sock")) in itertools.pairwise(argv)
         if ours and any(arg.endswith("configurable-http-proxy") for arg in argv):
             return pid, argv
     return None

@@ -61,6 +61,9 @@ class HubSettings:
     )
     python: str = setting("/usr/bin/python3.11", help="an interpreter every learner can run")
     idle_minutes: int = setting(60, help="stop a server idle this long (0: never)", ge=0)
+    connections_per_account: int = setting(
+        200, help="connections one account (or remote address) may hold to the hub", ge=16
+    )
 
     def __post_init__(self) -> None:
         _check_names("learners", self.learners)
