@@ -18,7 +18,7 @@ _PAGE = """<!doctype html>
 </style>
 </head>
 <body>
-<div id="window" role="img" aria-label="TurtleSim">{svg}</div>
+<div id="window">{svg}</div>
 <div id="status">TurtleSim: {node}</div>
 <script>
 const view = document.getElementById("window");

@@ -7,9 +7,10 @@ import math
 
 from .scene import PenLine, Scene, TurtlePose
 
-__all__ = ["WINDOW_PIXELS", "render_svg"]
+__all__ = ["PIXELS_PER_METER", "WINDOW_PIXELS", "describe", "render_svg"]
 
 WINDOW_PIXELS = 500
+PIXELS_PER_METER = 45  # turtlesim's: x = column / 45, y = (499 - row) / 45 (rows go down)
 # A turtle seen from above, heading along +x, about the size of the real one's 45-pixel image.
 _TURTLE = (
     '<ellipse cx="-9" cy="-9" rx="4" ry="3" fill="#3d8c40"/>'
@@ -43,12 +44,29 @@ def _turtle(turtle: TurtlePose) -> str:
     )
 
 
+def describe(scene: Scene) -> str:
+    """Return the window in words: each turtle's pose as /turtleN/pose gives it, the lines."""
+    turtles = "; ".join(
+        f"{t.name} at x {t.column / PIXELS_PER_METER:.2f}, "
+        f"y {(WINDOW_PIXELS - 1 - t.row) / PIXELS_PER_METER:.2f}, "
+        f"theta {round(t.theta, 2) + 0.0:.2f} rad"  # + 0.0: never "-0.00"
+        for t in scene.turtles
+    )
+    lines = len(scene.lines)
+    drawn = f"{lines} pen line{'' if lines == 1 else 's'} drawn" if lines else "nothing drawn"
+    return f"{turtles or 'No turtle'}; {drawn}."
+
+
 def render_svg(scene: Scene) -> str:
-    """Return the window as an SVG document: background, pen lines, then the turtles."""
+    """Return the window as an SVG document: its text alternative (a title and the turtles'
+    poses in words), the background, pen lines, then the turtles."""
     size = WINDOW_PIXELS
     parts = [
         f'<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{size}" '
-        f'viewBox="0 0 {size} {size}">',
+        f'viewBox="0 0 {size} {size}" role="img" '
+        'aria-labelledby="turtlesim-title turtlesim-desc">',
+        '<title id="turtlesim-title">TurtleSim window</title>',
+        f'<desc id="turtlesim-desc">{html.escape(describe(scene))}</desc>',
         f'<rect id="background" width="{size}" height="{size}" fill="{_rgb(scene.background)}"/>',
         *(_line(line) for line in scene.lines),
         *(_turtle(turtle) for turtle in scene.turtles),

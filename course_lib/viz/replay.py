@@ -21,6 +21,7 @@ import numpy as np
 import umsgpack
 
 from ..core.atomic_files import atomic_write
+from .page_access import PANEL_JS
 from .scene import body_paths, camera_commands, moving_bodies, scene_commands
 from .speed_svg import PLAYHEAD_ID, PLOT_ID
 
@@ -211,7 +212,7 @@ def replay_html(
         start = f"{frames[0].time_s:.4f}"
         playhead = _PLAYHEAD_JS % {"plot": PLOT_ID, "head": PLAYHEAD_ID, "start": start}
     return (
-        "<!DOCTYPE html>\n<html>\n<head><meta charset=utf-8>"
+        '<!DOCTYPE html>\n<html lang="en">\n<head><meta charset=utf-8>'
         f"<title>{html.escape(title)}</title>\n<style>body {{margin: 0}} #meshcat-pane "
         f"{{width: 100vw; height: {pane_height}; overflow: hidden; position: relative}} "
         "#plot-pane {text-align: center} #plot-pane svg {max-width: 100%; height: auto} "
@@ -225,7 +226,8 @@ def replay_html(
         'document.getElementById("needs-scripts").remove();\n'
         "function bytes(b64) { return Uint8Array.from(atob(b64), c => c.charCodeAt(0)); }\n"
         'var viewer = new MeshCat.Viewer(document.getElementById("meshcat-pane"));\n'
-        f"{body}{_PLAY_JS}{playhead}{_CONTROLS_JS % timing}</script>\n</body>\n</html>\n"
+        f"{body}{_PLAY_JS}{playhead}{_CONTROLS_JS % timing}{PANEL_JS}"
+        "accessiblePanel(viewer, null);\n</script>\n</body>\n</html>\n"
     )
 
 

@@ -55,6 +55,7 @@ from meshcat.servers.zmqserver import (
 from ..core import procfs
 from ..core.paths import runtime_dir
 from ..core.ports import unix_socket_answers
+from .page_access import PANEL_JS, ROBOT_STATE_JS, TOOLBAR_JS
 
 __all__ = [
     "ORIGINS_ENV",
@@ -75,14 +76,24 @@ POSES_COMMAND = b"set_transforms"
 WATCHERS_COMMAND = b"watchers"
 
 
-_PAGE = """<!DOCTYPE html>
-<html><head><meta charset=utf-8><title>MeshCat</title>
+# The toolbar (TF frames, Controls) is one Tab stop; the line under it says where the robot is
+# (page_access). White on at least 70 % black: AA contrast over any part of the scene.
+_PAGE = (
+    """<!DOCTYPE html>
+<html lang="en"><head><meta charset=utf-8><title>3D view of the simulated robot</title>
 <style>body {margin: 0} #meshcat-pane {width: 100vw; height: 100vh; overflow: hidden}
-#tf-toggle {position: absolute; left: 8px; top: 8px; padding: 2px 6px; border-radius: 4px;
-  font: 13px sans-serif; color: #fff; background: rgba(0, 0, 0, 0.55); user-select: none}</style>
+#view-tools {position: absolute; left: 8px; top: 8px; display: flex; gap: 6px;
+  align-items: center}
+#view-tools > *, #robot-state {padding: 2px 6px; border: 0; border-radius: 4px;
+  font: 13px sans-serif; color: #fff; background: rgba(0, 0, 0, 0.7); user-select: none}
+#robot-state {position: absolute; left: 8px; bottom: 8px; margin: 0}</style>
 </head><body><div id="meshcat-pane"></div>
+<div id="view-tools" role="toolbar" aria-label="3D view">
 <label id="tf-toggle" title="the frames /tf and /tf_static describe (x red, y green, z blue)">
 <input type="checkbox" id="tf-frames"> TF frames</label>
+<button type="button" id="view-controls" aria-expanded="false">Controls</button></div>
+<p id="robot-state" role="status" aria-live="polite" aria-atomic="true">Robot: waiting for
+the simulation</p>
 <script src="main.min.js"></script>
 <script>
 // Drawn on demand: meshcat's own loop (off here) asks the browser for a frame 60 times a
@@ -155,8 +166,15 @@ document.addEventListener("visibilitychange", function () {
 if (viewer.connection) {
   viewer.connection.addEventListener("open", function () { if (!shown) { tell(false); } });
 }
-</script></body></html>
+</script>
+<script>
 """
+    + PANEL_JS
+    + 'accessiblePanel(viewer, document.getElementById("view-controls"));\n'
+    + TOOLBAR_JS
+    + ROBOT_STATE_JS
+    + "</script></body></html>\n"
+)
 
 
 class _ViewerPage(tornado.web.RequestHandler):

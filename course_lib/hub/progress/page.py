@@ -24,6 +24,19 @@ td.learner { font-weight: bold; }
 .note { color: #8a4b00; }
 """
 
+# A page that reloads itself on a timer must let its reader stop it (WCAG 2.2.1; axe's
+# meta-refresh): a box, ticked, reloads every 30 s; unticked, never.
+_REFRESH = """<label><input type="checkbox" id="refresh" checked> Refresh every 30 seconds</label>
+<script>(function () {
+  var box = document.getElementById("refresh"), timer = null;
+  function arm() {
+    clearTimeout(timer);
+    if (box.checked) timer = setTimeout(function () { location.reload(); }, 30000);
+  }
+  box.addEventListener("change", arm);
+  arm();
+})();</script>"""
+
 
 def _when(moment: datetime | None) -> str:
     return moment.strftime("%Y-%m-%d %H:%M UTC") if moment else ""
@@ -94,11 +107,10 @@ def render_page(
     note_html = f'<p class="note">{escape(note)}</p>' if note else ""
     return (
         '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
-        '<meta http-equiv="refresh" content="30">'
         f"<title>Course progress</title><style>{_STYLE}</style></head><body>"
         "<h1>Course progress</h1>"
         f"<p>{len(names)} learner(s). Each cell is the lesson's latest self-check. "
-        "The page refreshes every 30 seconds.</p>"
+        f"{_REFRESH}</p>"
         f"{note_html}"
         f"<table><thead><tr><th>Learner</th>{head}</tr></thead><tbody>{body}</tbody></table>"
         f"{_exercises_table(exercises)}"

@@ -17,7 +17,9 @@ def test_svg_draws_background_then_lines_then_turtles() -> None:
     )
     root = ET.fromstring(render_svg(scene))
     assert (root.get("width"), root.get("height")) == ("500", "500")
-    background, line, turtle = list(root)
+    title, desc, background, line, turtle = list(root)
+    assert root.get("role") == "img" and title.tag == f"{SVG}title"  # its text alternative
+    assert desc.text == "turtle1 at x 6.67, y 5.54, theta 1.57 rad; 1 pen line drawn."
     assert background.get("fill") == "rgb(150,86,255)"
     assert line.tag == f"{SVG}polyline" and line.get("stroke") == "rgb(179,184,255)"
     assert line.get("points") == "249.5,249.5 300.0,249.5"
