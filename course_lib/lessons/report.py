@@ -43,7 +43,8 @@ class SelfCheck:
         """Return the report: one line per check, a `Try:` line under each failure, a verdict."""
         lines = [f"Self-check, lesson {self.lesson}"]
         for item in self.checks:
-            lines.append(f"  {'✓' if item.passed else '✗'} {item.what}")
+            # the word says it too: a sign alone is read out as "check mark" or not at all
+            lines.append(f"  {'✓ passed' if item.passed else '✗ not yet'}: {item.what}")
             if not item.passed and item.hint:
                 lines.append(f"      Try: {item.hint}")
         good = sum(c.passed for c in self.checks)
@@ -52,7 +53,7 @@ class SelfCheck:
         else:
             lines.append(
                 f"{good} of {len(self.checks)} checks passed: "
-                "fix the ✗ above, then run this cell again."
+                "fix what is not yet passed above, then run this cell again."
             )
         return "\n".join(lines) + "\n"
 

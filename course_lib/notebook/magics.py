@@ -1,7 +1,9 @@
 """`%ros2` and `%%ros2` in notebooks: the command after a prompt, output as a terminal shows it.
 
 The plain-text form of each result is exactly what the real `ros2` prints (stdout then
-stderr), so nbval can compare it; the HTML form adds the prompt, red stderr and the exit code.
+stderr), so nbval can compare it; the HTML form adds the prompt, the exit code, and colours
+stderr's lines as ROS's colourised log does: a log line by its severity (`[INFO]` in the text's
+own colour, `[WARN]` amber), any other line (a failure, a traceback) red.
 After a mistake, a course hint (`hints.py`) follows on its own line: `Hint: ...` in plain text,
 a blue line apart in HTML; Jazzy's text above it is unchanged.
 """
@@ -11,6 +13,7 @@ from __future__ import annotations
 import functools
 import html
 import os
+import re
 import shlex
 import time
 from collections.abc import Sequence
@@ -20,9 +23,31 @@ from ..core.param_journal import acting_door
 from ..ros2.results import CommandOutput
 from . import hints as course_hints
 
-__all__ = ["CommandResult", "load_ipython_extension", "run_line"]
+__all__ = ["ERROR_COLOUR", "CommandResult", "load_ipython_extension", "run_line", "stderr_html"]
 
 _STYLE = "font-family:monospace;white-space:pre-wrap;margin:0"
+ERROR_COLOUR = "#c62828"  # 5.6:1 on white, as every colour here (WCAG AA: 4.5:1)
+# a log line's severity, after a launched process's `[name-N] ` prefix if any; none: red
+_SEVERITY = re.compile(r"^(?:\[[\w.-]+-\d+\] )?\[(DEBUG|INFO|WARN|ERROR|FATAL)\]")
+_COLOURS = {"DEBUG": "", "INFO": "", "WARN": "#8a4b00", "ERROR": ERROR_COLOUR}
+
+
+def stderr_html(text: str) -> str:
+    """Return stderr as one `<pre>`, runs of lines of one colour in a span each (the text is
+    unchanged: only its presentation differs from stdout's)."""
+    runs: list[tuple[str, str]] = []
+    for line in text.splitlines(keepends=True):
+        found = _SEVERITY.match(line)
+        colour = _COLOURS.get(found[1], ERROR_COLOUR) if found else ERROR_COLOUR
+        if runs and runs[-1][0] == colour:
+            runs[-1] = (colour, runs[-1][1] + line)
+        else:
+            runs.append((colour, line))
+    body = "".join(
+        f'<span style="color:{colour}">{html.escape(run)}</span>' if colour else html.escape(run)
+        for colour, run in runs
+    )
+    return f'<pre class="stderr" style="{_STYLE}">{body}</pre>'
 
 
 class CommandResult:
@@ -50,11 +75,10 @@ class CommandResult:
         if self.output.stdout:
             parts.append(f'<pre style="{_STYLE}">{html.escape(self.output.stdout)}</pre>')
         if self.output.stderr:
-            parts.append(
-                f'<pre style="{_STYLE};color:#c62828">{html.escape(self.output.stderr)}</pre>'
-            )
+            parts.append(stderr_html(self.output.stderr))
         if self.output.exit_code:
-            parts.append(f'<span style="color:#c62828">[exit code {self.output.exit_code}]</span>')
+            code = self.output.exit_code
+            parts.append(f'<span style="color:{ERROR_COLOUR}">[exit code {code}]</span>')
         return "".join(parts) + course_hints.as_html(self.hints) + "</div>"
 
 

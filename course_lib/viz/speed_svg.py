@@ -53,11 +53,13 @@ def speed_svg(
     marks: Sequence[tuple[float, str]],
     *,
     title: str = "Robot speed from /odom",
+    summary: str = "",
 ) -> str:
     """Return an SVG of (sim time s, speed m/s) samples with a numbered dashed line per mark.
 
     Marks outside the samples' time span are left out; a legend under the plot lists each
-    numbered mark with its simulated time and label.
+    numbered mark with its simulated time and label. A screen reader announces a picture
+    (role img) named by `title` and described by `summary` (what the plot shows, in words).
     """
     run = latest_run(samples)
     if run:
@@ -80,7 +82,9 @@ def speed_svg(
         f'<svg id="{PLOT_ID}" width="{_W}" '
         f'height="{_H + legend_h}" viewBox="0 0 {_W} {_H + legend_h}" '
         f'data-t0="{t0:.4f}" data-t1="{t1:.4f}" data-x0="{_LEFT}" data-width="{width}" '
-        'font-family="sans-serif" font-size="12">',
+        'font-family="sans-serif" font-size="12" role="img">',
+        f"<title>{html.escape(title)}</title>",
+        *([f"<desc>{html.escape(summary)}</desc>"] if summary else []),
         f'<text x="{_W / 2:.0f}" y="16" text-anchor="middle" font-size="14">'
         f"{html.escape(title)}</text>",
         f'<rect x="{_LEFT}" y="{_TOP}" width="{width}" height="{height}" fill="none" '

@@ -21,6 +21,7 @@ CELLS = [  # lesson 11's own calls, without its simulation
     'panel = lesson.parameter_panel("/descriptor_vel_node")',
 ]
 SLIDERS = {"travel_time": (300, "0.0"), "velocity": (26, "0.00")}  # steps, readout at 0.0
+MAXIMA = {"travel_time": "30", "velocity": "0.26"}  # as the descriptors declare them
 
 
 def _write_notebook(folder: Path) -> None:
@@ -68,6 +69,10 @@ def test_panel_sliders_have_a_pixel_per_step_and_round_their_readout(
             assert box["x"] + box["width"] <= area["x"] + area["width"] + 1, f"{name} overflows"
             shown = (row.locator(".widget-readout").text_content() or "").strip()
             assert shown == readout, f"{name} reads out {shown!r}"
+            # a screen reader hears the handle by its label, its true range, the readout's value
+            handle = page.get_by_role("slider", name=name, exact=True)
+            said = {k: handle.get_attribute(f"aria-value{k}") for k in ("max", "min", "text")}
+            assert said == {"max": MAXIMA[name], "min": "0", "text": readout}, (name, said)
     finally:
         page.screenshot(path=str(artifacts / "page_last.png"), full_page=True)
 

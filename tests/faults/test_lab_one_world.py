@@ -81,7 +81,7 @@ def test_a_lessons_driver_stops_the_other_lessons_drivers_and_names_the_learners
     assert wait_gone([param_vel], 10.0) == [], "lesson 5's param_vel_node still drives"
     assert eleven.ok("print(lesson.self_check().passed)").text  # runs; the exercise is not done
     alone = eleven.ok("print(lesson.self_check())").text
-    assert "✓ only your descriptor_vel_node drives the robot" in alone, alone
+    assert "✓ passed: only your descriptor_vel_node drives the robot" in alone, alone
 
     terminal = RestTerminal(lab.base_url, lab.token)
     try:
@@ -90,7 +90,7 @@ def test_a_lessons_driver_stops_the_other_lessons_drivers_and_names_the_learners
             r"publishing #2",
         )
         check = eleven.ok("print(lesson.self_check())").text
-        found = re.search(r"✗ only your descriptor_vel_node drives .*\n\s+Try: (.*)", check)
+        found = re.search(r"✗ not yet: only your descriptor_vel_node .*\n\s+Try: (.*)", check)
         assert found, check
         assert "also publishes on /cmd_vel: stop it (Ctrl-C in its terminal;" in found[1], check
         # another lesson's driver started now leaves the terminal's publisher running, named
@@ -99,7 +99,7 @@ def test_a_lessons_driver_stops_the_other_lessons_drivers_and_names_the_learners
         assert len(named) == 1 and "no lesson started it" in named[0], again.text
         terminal.interrupt()
         passed = eleven.ok("print(lesson.self_check())").text
-        assert "✓ only your descriptor_vel_node drives the robot" in passed, passed
+        assert "✓ passed: only your descriptor_vel_node drives the robot" in passed, passed
     finally:
         terminal.close()
     assert pid_alive(int(eleven.ok("print(lesson.node('descriptor_vel').pid)").text.split()[0]))

@@ -134,6 +134,7 @@ class LessonRun:
 
     def save(self, *, plot: Any = None, settings: Any = None) -> ReplayLink | None:
         """Write the run's page (None if no pose was recorded); return its link."""
+        from ...notebook.widgets.speed_summary import speed_summary
         from ...sim.view.run_log import replay_frames
         from ...viz.replay import write_replay
         from ...viz.speed_svg import speed_svg
@@ -147,7 +148,8 @@ class LessonRun:
             samples = [(s.time_s, s.speed_mps) for s in run]
             with self._lock:
                 marks = list(self.marks)
-        svg = speed_svg(samples, marks, title=f"Robot speed from /odom · changes of {self.node}")
+        title = f"Robot speed from /odom · changes of {self.node}"
+        svg = speed_svg(samples, marks, title=title, summary=speed_summary(samples, marks))
         model = _model(settings)
         path = write_replay(
             self._target(), model, replay_frames(model, run), fps=FPS, plot_svg=svg

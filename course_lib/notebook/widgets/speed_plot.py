@@ -17,6 +17,7 @@ from typing import Any
 from ...sim.world.samples import SAMPLES_TOPIC, unpack
 from ...viz.speed_svg import speed_svg
 from .events import changes_of, subscribe_parameter_events
+from .speed_summary import speed_summary
 
 __all__ = ["REFRESH_S", "SpeedPlot"]
 
@@ -102,9 +103,9 @@ class SpeedPlot:
             return list(self.samples), list(self.marks)
 
     def svg(self) -> str:
-        """Return the plot so far as SVG text."""
+        """Return the plot so far as SVG text, what it shows said in its description."""
         samples, marks = self.snapshot()
-        return speed_svg(samples, marks)
+        return speed_svg(samples, marks, summary=speed_summary(samples, marks))
 
     def show(self) -> Any:
         """Display the live plot (redrawn when new samples came, at most once per REFRESH_S,
@@ -144,11 +145,15 @@ class SpeedPlot:
             return svg
 
     def still(self) -> Any:
-        """End the live plot on the whole run so far and return that picture, still."""
-        from IPython.display import SVG
+        """End the live plot on the whole run so far and return that picture, still.
+
+        As HTML holding the SVG (JupyterLab shows an image/svg+xml output as an <img> with no
+        text alternative; inline, the SVG's own title and description are read out).
+        """
+        from IPython.display import HTML
 
         self.close()
-        return SVG(data=self._draw(final=True))  # the live widget's last picture, too
+        return HTML(self._draw(final=True))  # the live widget's last picture, too
 
     def close(self) -> None:
         """Stop refreshing and listening, then show everything heard in the live plot (the

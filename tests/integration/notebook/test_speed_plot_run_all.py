@@ -32,7 +32,7 @@ def _cells_up_to_still() -> list[str]:
 
 
 def _svg(text: str) -> str:
-    """Return the <svg> element of `text` as IPython's SVG display stores it."""
+    """Return the <svg> element of `text` (the live widget's value, or the still's HTML)."""
     return minidom.parseString(text).getElementsByTagName("svg")[0].toxml()
 
 
@@ -56,7 +56,7 @@ class _Outputs:
             if isinstance(value, str):
                 self.frames.append(value)
         elif kind == "execute_result" and source == STILL_CELL:
-            self.still = content["data"].get("image/svg+xml", "")
+            self.still = content["data"].get("text/html", "")  # inline: its title is read out
         elif kind == "error":
             self.errors.append(f"{source}: {content['ename']}: {content['evalue']}")
 

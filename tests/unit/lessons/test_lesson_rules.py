@@ -53,8 +53,8 @@ def test_unknown_key_suggests_the_closest() -> None:
 def test_self_check_says_what_to_try_only_for_failures() -> None:
     report = SelfCheck.of(7, [check("drove", True, "x"), check("stopped", False, "set 0.0")])
     assert report.text() == (
-        "Self-check, lesson 7\n  ✓ drove\n  ✗ stopped\n      Try: set 0.0\n"
-        "1 of 2 checks passed: fix the ✗ above, then run this cell again.\n"
+        "Self-check, lesson 7\n  ✓ passed: drove\n  ✗ not yet: stopped\n      Try: set 0.0\n"
+        "1 of 2 checks passed: fix what is not yet passed above, then run this cell again.\n"
     )
     assert not report.passed
 
