@@ -20,7 +20,7 @@ import pytest
 from accessibility import audit, report
 from waits import POLL_MS
 
-from course_lib.hub.progress.page import render_page
+from course_lib.hub.progress.page import render_error, render_page
 from course_lib.hub.progress.store import ExerciseStats, LessonState
 from course_lib.sim.view.live import LiveView
 from course_lib.sim.view.recorder import plan_frames
@@ -268,5 +268,7 @@ def test_the_progress_page_passes_axe_and_says_passed_and_failed_in_words(
         refresh = page.get_by_label("Refresh every 30 seconds")
         assert refresh.is_checked()
         refresh.uncheck()  # the instructor stops the reloads (WCAG 2.2.1)
+        page.set_content(render_error(403, "you are not an admin of this class"))
+        _clean(audit(page, axe_js))  # before: serious html-has-lang
     finally:
         page.close()

@@ -9,7 +9,6 @@ from __future__ import annotations
 import json
 from collections.abc import Mapping
 from dataclasses import dataclass
-from html import escape
 from http import HTTPStatus
 from typing import Any
 
@@ -19,7 +18,7 @@ from tornado import web
 from ...lessons.progress.record import RecordError, parse_record
 from . import SERVICE_NAME
 from .hub_users import HubUsersError, hub_users
-from .page import render_page
+from .page import render_error, render_page
 from .store import ProgressStore, StoreError
 
 __all__ = ["Refusal", "ServiceContext", "make_app"]
@@ -99,10 +98,7 @@ class PageHandler(_HubHandler):
 
     def write_error(self, status_code: int, **kwargs: Any) -> None:
         self.set_header("Content-Type", "text/html; charset=utf-8")
-        self.finish(
-            f"<!DOCTYPE html><html><head><title>{status_code}</title></head><body>"
-            f"<h1>{status_code}: {escape(_message(status_code, kwargs))}</h1></body></html>\n"
-        )
+        self.finish(render_error(status_code, _message(status_code, kwargs)))
 
 
 class RecordsHandler(_HubHandler):

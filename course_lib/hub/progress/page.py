@@ -9,7 +9,7 @@ from html import escape
 from . import LESSONS
 from .store import ExerciseStats, LessonState
 
-__all__ = ["render_page", "rows_of"]
+__all__ = ["render_error", "render_page", "rows_of"]
 
 _STYLE = """
 body { font-family: system-ui, sans-serif; margin: 1.5em; color: #222; }
@@ -115,4 +115,12 @@ def render_page(
         f"<table><thead><tr><th>Learner</th>{head}</tr></thead><tbody>{body}</tbody></table>"
         f"{_exercises_table(exercises)}"
         "</body></html>\n"
+    )
+
+
+def render_error(status_code: int, message: str) -> str:
+    """Return the service's error page: its status and what went wrong, in English."""
+    return (
+        f'<!DOCTYPE html><html lang="en"><head><title>{status_code}</title></head><body>'
+        f"<h1>{status_code}: {escape(message)}</h1></body></html>\n"
     )
