@@ -15,11 +15,23 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-__all__ = ["PINS", "WCAG_TAGS", "Violation", "audit", "axe_source", "report", "within"]
+__all__ = [
+    "OUTPUTS",
+    "PINS",
+    "WCAG_TAGS",
+    "Violation",
+    "audit",
+    "audit_lesson",
+    "axe_source",
+    "report",
+    "within",
+]
 
 PINS = Path(__file__).resolve().with_name("axe")  # package.json and its lock file
 WCAG_TAGS = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa"]
 BLOCKING = ("critical", "serious")
+OUTPUTS = ".jp-OutputArea-output"  # what a lesson's cells print and show: the course's
+VIEW = 'iframe[title="3D view of the simulated robot"]'
 
 
 @dataclass(frozen=True)
@@ -93,3 +105,16 @@ def report(violations: list[Violation]) -> str:
         counts[f"{v.impact} {v.rule}"] = counts.get(f"{v.impact} {v.rule}", 0) + 1
     summary = ", ".join(f"{n} {rule}" for rule, n in sorted(counts.items()))
     return "\n".join([summary or "none", *(v.line() for v in violations[:40])])
+
+
+def audit_lesson(page: Any, source: str) -> dict[str, list[Violation]]:
+    """Audit a JupyterLab page showing a lesson that ran: return the violations in its
+    cells' outputs ("outputs"), in its 3D views' frames ("view"), and JupyterLab's own
+    ("jupyterlab", listed apart: the course does not draw them)."""
+    course = audit(page, source, [OUTPUTS])
+    frames = [h.content_frame() for h in page.locator(VIEW).element_handles()]
+    views = [v for frame in frames if frame is not None for v in audit(frame, source)]
+    mine = {(v.rule, v.target) for v in course}
+    whole = audit(page, source)
+    lab = [v for v in whole if (v.rule, v.target) not in mine and "iframe" not in v.target]
+    return {"outputs": course, "view": views, "jupyterlab": lab}
