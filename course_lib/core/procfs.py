@@ -30,6 +30,7 @@ __all__ = [
     "cmdline",
     "environ",
     "fd_targets",
+    "has_children",
     "holder_start",
     "network_namespace",
     "owner_uid",
@@ -120,6 +121,15 @@ def owner_uid(pid: int) -> int | None:
         return (PROC / str(pid)).stat().st_uid
     except OSError:
         return None
+
+
+def has_children(pid: int) -> bool:
+    """Return whether `pid` has a child process now (any of its threads' children)."""
+    with contextlib.suppress(OSError):
+        for task in PROC.joinpath(str(pid), "task").iterdir():
+            if task.joinpath("children").read_text().strip():
+                return True
+    return False
 
 
 def pids() -> list[int]:

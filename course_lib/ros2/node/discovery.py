@@ -309,6 +309,22 @@ _CLIENT_MODULES = ("course_lib.ros2.command.cli", "course_lib.ros2.command.quick
 _LAUNCH_MODULE = "course_lib.launch"
 
 
+_STARTER_VERBS = ("launch", "run")
+
+
+def starter_command(cmdline: Sequence[str]) -> bool:
+    """Return whether a command line starts nodes as its children: `ros2 launch` or `ros2
+    run` (a terminal's, before and after the quick client hands over to the full one) or a
+    notebook's `python -m course_lib.launch`."""
+    for i, arg in enumerate(cmdline):
+        verb = cmdline[i + 1] if i + 1 < len(cmdline) else ""
+        if arg.rpartition("/")[2] == "ros2" and i <= 2:
+            return verb in _STARTER_VERBS
+        if arg in (*_CLIENT_MODULES, _LAUNCH_MODULE) and i > 0 and cmdline[i - 1] == "-m":
+            return arg == _LAUNCH_MODULE or verb in _STARTER_VERBS
+    return False
+
+
 def ros2_client_command(cmdline: Sequence[str]) -> bool:
     """Return whether a command line is a course `ros2` command: no node of its own joins
     from it (`ros2 param get` asks; `ros2 run` and `ros2 launch`, from a terminal or a
@@ -367,6 +383,13 @@ def domain_newcomers(
             continue
         cmdline = procfs.cmdline(pid) or ()
         if not cmdline or cmdline[0].rpartition("/")[2] in _SHELLS:
+            continue
+        if starter_command(cmdline):
+            # a launch (or run) that has not started its nodes yet is a node starting: a
+            # command typed right after `ros2 launch ... &` said "Node not found"; once its
+            # nodes are started, they are the newcomers (never longer than max_age_s)
+            if not procfs.has_children(pid):
+                found.append(pid)
             continue
         if ros2_client_command(cmdline):
             continue
