@@ -13,13 +13,13 @@ from __future__ import annotations
 import contextlib
 import fcntl
 import os
-import stat
 import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
 from ...core.errors import CourseError
 from ...core.procfs import cmdline
+from .root_folder import root_only_folder
 
 __all__ = ["LOCKS_FOLDER", "LOCK_TIMEOUT_S", "LockWaitError", "hub_lock", "lock_holders"]
 
@@ -35,18 +35,7 @@ class LockWaitError(CourseError):
 
 def _private_folder(environment: Path) -> Path:
     """Return `<environment>/.locks`, made (or made again) a folder of this account alone."""
-    folder = environment / LOCKS_FOLDER
-    with contextlib.suppress(FileExistsError):
-        folder.mkdir(mode=0o700)
-    info = folder.lstat()
-    if not stat.S_ISDIR(info.st_mode) or info.st_uid != os.geteuid():
-        raise CourseError(
-            f"{folder} is not a folder of the hub's account (a link, a file or another "
-            "account's folder is there).",
-            hint=f"remove it (`rm -r {folder}`), then start the hub again.",
-        )
-    if stat.S_IMODE(info.st_mode) != 0o700:
-        folder.chmod(0o700)
+    folder = root_only_folder(environment / LOCKS_FOLDER)
     for name in _LEGACY:  # an account may hold one open: it no longer stops anything
         (environment / name).unlink(missing_ok=True)
     return folder

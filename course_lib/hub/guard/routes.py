@@ -12,7 +12,6 @@ A link the learner makes or removes later changes nothing of the route.
 
 from __future__ import annotations
 
-import contextlib
 import os
 import socket
 import stat
@@ -20,6 +19,7 @@ import struct
 from pathlib import Path
 
 from ...core.errors import CourseError
+from .root_folder import root_only_folder
 
 __all__ = ["ROUTES_FOLDER", "RouteError", "forget_route", "pin_route"]
 
@@ -31,14 +31,7 @@ class RouteError(CourseError):
 
 
 def _routes(sockets: Path) -> Path:
-    folder = sockets / ROUTES_FOLDER
-    with contextlib.suppress(FileExistsError):
-        folder.mkdir(mode=0o700)
-    info = folder.lstat()
-    if not stat.S_ISDIR(info.st_mode) or info.st_uid != os.geteuid():
-        raise RouteError(f"{folder} is not a folder of the hub's account.")
-    folder.chmod(0o700)
-    return folder
+    return root_only_folder(sockets / ROUTES_FOLDER)
 
 
 def _listener_uid(path: Path) -> int:
