@@ -65,6 +65,7 @@ _SETTLED = """(oneCell) => {
 }"""
 _KERNEL_STATUS = ".jp-StatusBar-Widget"
 _ACTION_TIMEOUT_MS = 120_000
+_DRAWN_MS = 30_000  # a cell scrolled into view gets its editor within this, loaded or not
 
 
 class UnexpectedDialog(AssertionError):
@@ -282,12 +283,17 @@ class LabPage:
 
     def _click_editor(self, index: int) -> None:
         """Click into the editor of the `index`th code cell, near its top left corner (never
-        under a notification)."""
-        editor = self.page.evaluate_handle(
-            f"(index) => {{ {_FRONT}\n"
-            " return codeCells()[index].node.querySelector('.jp-InputArea-editor'); }",
-            index,
-        ).as_element()
+        under a notification). The cell is scrolled into view first: JupyterLab draws a long
+        notebook's cells as they come into view, and on a loaded host the last one had no
+        editor yet (the full walk: "07_move_the_robot.ipynb has no code cell 12")."""
+        find = (
+            f"(index) => {{ {_FRONT}\n const cell = codeCells()[index];"
+            " if (!cell) return null; front().content.scrollToCell(cell, 'center');"
+            " return cell.node.querySelector('.jp-InputArea-editor'); }"
+        )
+        with contextlib.suppress(PlaywrightTimeout):
+            self.page.wait_for_function(find, arg=index, timeout=_DRAWN_MS, polling=POLL_MS)
+        editor = self.page.evaluate_handle(find, index).as_element()
         assert editor is not None, f"{self.current()} has no code cell {index}"
         editor.click(position={"x": 8, "y": 8})
 
