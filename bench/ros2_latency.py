@@ -4,7 +4,8 @@ Run: .venv/bin/python bench/ros2_latency.py [--runs N] [--terminal-only]
 Prints medians (and max) in milliseconds; the real Jazzy tools take 1.4-2.0 s per `param get`.
 The terminal part runs the clone's `.venv/bin/ros2` for every verb of the golden transcripts,
 beside `python -c pass` in the same run (issue 23's target: every verb within 50 ms on a
-quiet machine), and times "Node not found" once the daemon has known the domain a while.
+quiet machine), and times "Node not found" once the daemon has known the domain a while, as
+well as `topic echo` of a missing topic and `topic delay` (issue 67).
 BENCH_REPO=<another clone> measures that clone's code and `ros2` (a before/after table).
 """
 
@@ -150,6 +151,60 @@ def _not_found(env: dict[str, str], runs: int) -> None:
     )
 
 
+STAMPED = (
+    "import rclpy\n"
+    "from geometry_msgs.msg import TwistStamped\n"
+    "rclpy.init()\n"
+    "node = rclpy.create_node('stamped_talker')\n"
+    "pub = node.create_publisher(TwistStamped, '/stamped', 10)\n"
+    "def tick():\n"
+    "    msg = TwistStamped()\n"
+    "    msg.header.stamp = node.get_clock().now().to_msg()\n"
+    "    pub.publish(msg)\n"
+    "node.create_timer(0.1, tick)\n"
+    "rclpy.spin(node)\n"
+)
+
+
+def _first_line(env: dict[str, str], *args: str) -> None:
+    """Run a streaming `ros2` command until its first line, then press Ctrl-C."""
+    import signal
+
+    proc = subprocess.Popen(
+        [str(REPO / ".venv" / "bin" / "ros2"), *args],
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+        start_new_session=True,
+    )
+    assert proc.stdout is not None
+    line = proc.stdout.readline()
+    os.killpg(proc.pid, signal.SIGINT)
+    proc.wait(timeout=20)
+    proc.stdout.close()
+    assert line.startswith("average delay: "), line
+
+
+def _topic_streams(env: dict[str, str], runs: int) -> None:
+    """Time `topic echo` of a missing topic (settled) and `topic delay` (issue 67)."""
+    _report(
+        "terminal topic echo <missing> (settled)",
+        _timed(lambda: _terminal(env, "topic", "echo", "/no_such_topic", code=1), runs),
+        "real: 0.29-1.12 s daemon (issue 67), 1.09 s no daemon (golden)",
+    )
+    _report(
+        "terminal topic delay <no header>",
+        _timed(lambda: _terminal(env, "topic", "delay", "/cmd_vel", code=1), runs),
+        "real: 1.5 s no daemon at least (start, 0.5 s spin, first message)",
+    )
+    _report(
+        "terminal topic delay -> first figures",
+        _timed(lambda: _first_line(env, "topic", "delay", "/stamped"), runs),
+        "real: 2 s at least (start, 0.5 s spin, 1 s period)",
+    )
+
+
 # The real tools for the part-2 verbs (tests/golden/ros2/cases_part2.json wall times).
 PART2 = {
     "service list": (("service", "list"), "daemon_service_list_t"),
@@ -205,6 +260,13 @@ def main() -> None:
         _terminal(env, "node", "list")  # the daemon answers
         _every_verb(env, runs)
         _not_found(env, max(3, runs // 3))
+        stamped = session.spawn([sys.executable, "-c", STAMPED], name="stamped")
+        try:
+            assert wait_until(lambda: client().node.count_publishers("/stamped") >= 1, 15)
+            time.sleep(7.0)  # settled again: no process of the domain younger than 6 s
+            _topic_streams(env, max(3, runs // 3))
+        finally:
+            stamped.stop()
         if options.terminal_only:
             return
         _report(

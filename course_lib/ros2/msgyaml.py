@@ -9,7 +9,7 @@ from typing import Any
 
 import yaml
 
-__all__ = ["message_to_ordereddict", "message_to_yaml"]
+__all__ = ["array_info", "message_to_ordereddict", "message_to_yaml"]
 
 
 class _Dumper(yaml.Dumper):
@@ -28,7 +28,8 @@ def _is_message(value: Any) -> bool:
     return hasattr(value, "get_fields_and_field_types")
 
 
-def _array_info(value: Any, field_type: Any) -> str:
+def array_info(value: Any, field_type: Any) -> str:
+    """Return `--no-arr`'s stand-in for an array or sequence field (its type and length)."""
     kind = type(field_type).__name__
     inner = getattr(field_type, "value_type", None)
     name = getattr(inner, "typename", None) or getattr(inner, "name", None) or "unknown"
@@ -56,7 +57,7 @@ def _convert(value: Any, field_type: Any, limit: int | None, no_arr: bool, no_st
         return value[:limit] + "..." if limit is not None and len(value) > limit else value
     if isinstance(value, (list, tuple, array.array)) or type(value).__name__ == "ndarray":
         if no_arr and field_type is not None:
-            return _array_info(value, field_type)
+            return array_info(value, field_type)
         items = list(value)
         cut = limit is not None and len(items) > limit
         items = [_convert(v, None, limit, no_arr, no_str) for v in items[: limit if cut else None]]

@@ -122,10 +122,10 @@ def topic_echo_once(topic: str, *, timeout: float = 5.0) -> Any:
     """Return the next message published on `topic` (a ROS message object)."""
     from ..verbs.console import CollectingConsole
     from ..verbs.context import Context
-    from ..verbs.topic_stream import _expand, _import_message, _type_of
+    from ..verbs.topic_stream import _expand, _import_message, type_of
 
     ctx = Context(CollectingConsole(), client)
-    type_name = _type_of(ctx, topic)
+    type_name = type_of(ctx, topic)
     if type_name is None:
         raise TopicNotFoundError(
             f"No topic {topic} in the graph",

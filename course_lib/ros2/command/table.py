@@ -203,6 +203,11 @@ COMMANDS: dict[str, Command] = {
         "Various topic related sub-commands",
         {
             "bw": Verb("Display bandwidth used by topic", "verbs.topic:bw", _T + "bw_arguments"),
+            "delay": Verb(
+                "Display delay of topic from timestamp in header",
+                "verbs.topic:delay",
+                _T + "delay_arguments",
+            ),
             "echo": Verb(
                 "Output messages from a topic",
                 "verbs.topic_stream:topic_echo",
@@ -250,7 +255,6 @@ ELSEWHERE: dict[str, str] = {
     "pkg xml": "Read the manifest directly: `cat $(ros2 pkg prefix --share <package>)"
     "/package.xml`.",
     "service echo": "Watch a service's effect instead, e.g. `ros2 topic echo /parameter_events`.",
-    "topic delay": "Try `ros2 topic hz <topic>` to see how often messages arrive.",
 }
 
 

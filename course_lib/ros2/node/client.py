@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 import threading
 import time
@@ -326,20 +327,36 @@ class RosClient:
             names = self.node_names(include_hidden=include_hidden)
             return full_name in {n.full_name for n in names}
 
+        return self.wait_for(found, timeout=timeout, clock=clock, sleep=sleep)
+
+    def wait_for(
+        self,
+        found: Callable[[], bool],
+        *,
+        timeout: float,
+        limit: float = math.inf,
+        clock: Callable[[], float] = time.monotonic,
+        sleep: Callable[[float], None] = time.sleep,
+    ) -> bool:
+        """Wait until `found()` (a node, a topic) as `wait_for_node` does: a graph known whole
+        for SETTLED_QUIET_S that still lacks it is an answer ("not there") at once. `limit`
+        caps the whole wait."""
         start = clock()
         deadline = start + max(float(timeout), DISCOVERY_WAIT_S, YOUNG_CLIENT_S - self.age())
         complete_since: float | None = None
         while not found():
             now = clock()
+            if now - start >= limit:
+                return found()
             if now >= deadline:
                 view = self.graph_view()  # a participant unseen, or seen with nameless endpoints
                 partial = bool(view.missing_participants) or bool(view.unknown_endpoints)
                 if not partial or now - start >= INCOMPLETE_WAIT_S:
-                    return found()  # a last look: the node may have come with that view
+                    return found()  # a last look: it may have come with that view
             if self.graph_complete():
                 complete_since = now if complete_since is None else complete_since
                 if now - complete_since >= SETTLED_QUIET_S:
-                    return found()  # the whole domain is known: the node is in it or not
+                    return found()  # the whole domain is known: it is in it or not
             else:
                 complete_since = None
             sleep(_POLL_S)

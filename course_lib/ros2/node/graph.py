@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from typing import Any
 
-from ...core.waiting import wait_until
 from .client import YOUNG_CLIENT_S
 
 __all__ = ["COURSE_CLIENTS", "lookup", "own_prefix", "services", "topics", "types_of"]
@@ -48,7 +47,8 @@ def types_of(
 
 
 def lookup(client: Any, find: Any) -> Any:
-    """Return find()'s first non-None answer; a young client waits for discovery first."""
+    """Return find()'s first non-None answer; a young client waits for discovery first, until
+    its graph is known whole (RosClient.wait_for: then a miss is an answer) or it is warm."""
     found: list[Any] = []
 
     def look() -> bool:
@@ -58,5 +58,9 @@ def lookup(client: Any, find: Any) -> Any:
         return answer is not None
 
     client.wait_joined()  # a node starting now: count all of it, not what arrived so far
-    wait_until(look, max(0.0, YOUNG_CLIENT_S - client.age()))
+    young = YOUNG_CLIENT_S - client.age()
+    if young > 0:
+        client.wait_for(look, timeout=0, limit=young)
+    else:
+        look()
     return found[0] if found else None

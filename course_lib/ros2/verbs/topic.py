@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import queue
 import threading
 import time
 from typing import Any
@@ -16,6 +17,8 @@ from .context import Context, settled_client
 __all__ = [
     "bw",
     "bw_arguments",
+    "delay",
+    "delay_arguments",
     "find",
     "find_arguments",
     "info",
@@ -163,11 +166,12 @@ def bw(args: argparse.Namespace, ctx: Context) -> Any:
         return "`ros2 topic bw --use-sim-time` is not part of this course: it measures wall time."
     from rclpy.qos import qos_profile_sensor_data
 
-    from ..msgfill import import_type
+    from .topic_stream import import_message
 
     type_name = _wait_for_type(ctx, args.topic)
     if type_name is None:
         return 2
+    msg_class = import_message(type_name)  # one this environment lacks: ros2topic's error
     lock = threading.Lock()
     window: list[tuple[float, int]] = []
 
@@ -178,7 +182,7 @@ def bw(args: argparse.Namespace, ctx: Context) -> Any:
 
     node = ctx.client.node
     sub = node.create_subscription(
-        import_type(type_name, "msg"), args.topic, received, qos_profile_sensor_data, raw=True
+        msg_class, args.topic, received, qos_profile_sensor_data, raw=True
     )
     ctx.console.out(f"Subscribed to [{args.topic}]\n")
     try:
@@ -190,6 +194,61 @@ def bw(args: argparse.Namespace, ctx: Context) -> Any:
     finally:
         node.destroy_subscription(sub)
     return 2
+
+
+def _stamp_ns(msg: Any) -> int:
+    if not hasattr(msg, "header"):
+        raise RuntimeError("msg does not have header")  # ros2topic's words, on a message
+    return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
+
+
+def delay(args: argparse.Namespace, ctx: Context) -> Any:
+    """`ros2 topic delay <topic> [-w N]`: how old header stamps are on arrival, each second
+    from the subscription on until Ctrl-C (a type without header: an error at its first
+    message, as ros2topic's callback raises it)."""
+    if args.use_sim_time:
+        return "`ros2 topic delay --use-sim-time` is not part of this course: it uses wall time."
+    from rclpy.qos import qos_profile_sensor_data
+
+    from ..delay_window import DelayWindow
+    from .topic_stream import import_message
+
+    type_name = _wait_for_type(ctx, args.topic)
+    if type_name is None:
+        return 2
+    inbox: queue.Queue[tuple[int, Any]] = queue.Queue()
+    node, window = ctx.client.node, DelayWindow(args.window)
+    sub = node.create_subscription(
+        import_message(type_name),
+        args.topic,
+        lambda msg: inbox.put((time.time_ns(), msg)),
+        qos_profile_sensor_data,
+    )
+    tick = time.monotonic() + 1.0
+    try:
+        while not ctx.console.cancelled.wait(max(0.0, min(_POLL_S, tick - time.monotonic()))):
+            while not inbox.empty():
+                received, msg = inbox.get()
+                window.add(received, _stamp_ns(msg))
+            if time.monotonic() >= tick:
+                tick += 1.0
+                ctx.console.out(window.report() or "")
+    finally:
+        node.destroy_subscription(sub)
+    return 2
+
+
+def delay_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 topic delay`."""
+    parser.add_argument("topic", help="Topic name to calculate the delay for")
+    parser.add_argument(
+        "--window",
+        "-w",
+        type=options.positive_int,
+        default=10000,
+        help="window size, in # of messages, for calculating rate, string to (default: 10000)",
+    )
+    options.direct(parser)
 
 
 def topic_command_arguments(parser: Parser) -> None:

@@ -8,13 +8,20 @@ import queue
 import time
 from typing import Any
 
-from ...core.waiting import wait_until
+from ..msgcsv import message_to_csv
 from ..msgyaml import message_to_yaml
-from ..node.client import DISCOVERY_WAIT_S, YOUNG_CLIENT_S
+from ..node.client import YOUNG_CLIENT_S
 from . import options
 from .context import Context
 
-__all__ = ["topic_echo", "topic_echo_arguments", "topic_hz", "topic_hz_arguments"]
+__all__ = [
+    "import_message",
+    "topic_echo",
+    "topic_echo_arguments",
+    "topic_hz",
+    "topic_hz_arguments",
+    "type_of",
+]
 
 _TICK_S = 0.1
 
@@ -25,7 +32,10 @@ def _expand(topic: str) -> str:
     return expand_topic_name(topic, "ros2cli", "/")
 
 
-def _type_of(ctx: Context, topic: str, *, wait: bool = True) -> str | None:
+def type_of(ctx: Context, topic: str, *, wait: bool = True) -> str | None:
+    """Return the topic's one type (None if the graph has no such topic). With `wait`, a
+    young client first gives discovery its time; a graph known whole that lacks the topic
+    answers at once, as "Node not found" does (RosClient.wait_for)."""
     name = _expand(topic)
     found: list[str] = []
 
@@ -41,7 +51,10 @@ def _type_of(ctx: Context, topic: str, *, wait: bool = True) -> str | None:
                 return True
         return False
 
-    wait_until(look, DISCOVERY_WAIT_S if wait else 0.0)
+    if wait:
+        ctx.client.wait_for(look, timeout=0)
+    else:
+        look()
     return found[0] if found else None
 
 
@@ -50,6 +63,15 @@ def _import_message(type_name: str) -> Any:
 
     package, kind, name = type_name.split("/")
     return getattr(importlib.import_module(f"{package}.{kind}"), name)
+
+
+def import_message(type_name: str) -> Any:
+    """Return the class of a topic's type, or raise ros2topic's error if it cannot be
+    imported here (a package this environment lacks)."""
+    try:
+        return _import_message(type_name)
+    except (AttributeError, ModuleNotFoundError, ValueError):
+        raise RuntimeError(f"The message type '{type_name}' is invalid") from None
 
 
 _OVERRIDES = (
@@ -97,16 +119,13 @@ def _resolve(ctx: Context, args: argparse.Namespace) -> Any:
             return _import_message(args.message_type)
         except (AttributeError, ModuleNotFoundError, ValueError):
             raise RuntimeError("The passed message type is invalid") from None
-    type_name = _type_of(ctx, args.topic_name)
+    type_name = type_of(ctx, args.topic_name)
     if type_name is None:
         ctx.console.out(
             f"WARNING: topic [{args.topic_name}] does not appear to be published yet\n"
         )
         raise RuntimeError("Could not determine the type for the passed topic")
-    try:
-        return _import_message(type_name)
-    except (AttributeError, ModuleNotFoundError, ValueError):
-        raise RuntimeError(f"The message type '{type_name}' is invalid") from None
+    return import_message(type_name)
 
 
 def _field(msg: Any, path: list[str]) -> Any:
@@ -118,11 +137,22 @@ def _field(msg: Any, path: list[str]) -> Any:
     return msg
 
 
-def _format(msg: Any, args: argparse.Namespace) -> str:
+def _format(msg: Any, info: Any, args: argparse.Namespace) -> str:
+    """Return what ros2topic prints for one message: a raw or non-message value as is, else
+    one CSV line or YAML (each with its message info first when asked)."""
     if not hasattr(msg, "__slots__"):
-        return f"{msg}\n---\n"
+        head = ""
+        if args.include_message_info:
+            head = f"---Got new message, message info:---\n{dict(info)}\n---Message data:---\n"
+        return f"{head}{msg}\n---\n"
     limit = None if args.full_length else args.truncate_length
-    return (
+    if args.csv:
+        line = message_to_csv(msg, truncate_length=limit, no_arr=args.no_arr, no_str=args.no_str)
+        if args.include_message_info:
+            line = ",".join(str(x) for x in dict(info).values()) + "," + line
+        return line + "\n"
+    head = _info_text(info) if args.include_message_info else ""
+    return head + (
         message_to_yaml(
             msg,
             truncate_length=limit,
@@ -164,8 +194,6 @@ def topic_echo(args: argparse.Namespace, ctx: Context) -> Any:
         path = [p for p in args.field.split(".") if p]
         if not path:
             return f"Invalid field value '{args.field}'"
-    if args.csv or args.raw:
-        return "`ros2 topic echo --csv/--raw` is not part of this course's ros2 commands."
     msg_class = _resolve(ctx, args)
     topic = _expand(args.topic_name)
     inbox: queue.Queue[Any] = queue.Queue()
@@ -177,6 +205,7 @@ def topic_echo(args: argparse.Namespace, ctx: Context) -> Any:
         lambda msg, info: inbox.put((msg, info)),
         _qos(ctx, topic, args),
         event_callbacks=events,
+        raw=args.raw,
     )
     deadline = time.monotonic() + args.timeout if args.timeout else math.inf
     try:
@@ -188,9 +217,7 @@ def topic_echo(args: argparse.Namespace, ctx: Context) -> Any:
             shown = _field(msg, path) if path else msg
             if keep is not None and not keep(shown):
                 continue
-            if args.include_message_info:
-                ctx.console.out(_info_text(info))
-            ctx.console.out(_format(shown, args))
+            ctx.console.out(_format(shown, info, args))
             if args.once:
                 break
     finally:
@@ -229,7 +256,7 @@ def topic_hz(args: argparse.Namespace, ctx: Context) -> Any:
     # hz keeps waiting for a missing topic, so it warns at once (as ros2topic's blocking
     # get_msg_class); only a young client first gives discovery its time.
     young = max(0.0, YOUNG_CLIENT_S - ctx.client.age())
-    type_name = _type_of(ctx, args.topic_name, wait=young > 0)
+    type_name = type_of(ctx, args.topic_name, wait=young > 0)
     if type_name is None:
         ctx.console.out(
             f"WARNING: topic [{args.topic_name}] does not appear to be published yet\n"
@@ -237,11 +264,11 @@ def topic_hz(args: argparse.Namespace, ctx: Context) -> Any:
     while type_name is None:
         if ctx.console.cancelled.wait(_TICK_S):
             return 2
-        type_name = _type_of(ctx, args.topic_name, wait=False)
+        type_name = type_of(ctx, args.topic_name, wait=False)
     stamps: queue.Queue[float] = queue.Queue()
     node = ctx.client.node
     sub = node.create_subscription(
-        _import_message(type_name),
+        import_message(type_name),
         _expand(args.topic_name),
         lambda m: (keep is None or keep(m)) and stamps.put(time.monotonic()),
         qos_profile_sensor_data,
