@@ -283,17 +283,25 @@ class LabPage:
 
     def _click_editor(self, index: int) -> None:
         """Click into the editor of the `index`th code cell, near its top left corner (never
-        under a notification). The cell is scrolled into view first: JupyterLab draws a long
-        notebook's cells as they come into view, and on a loaded host the last one had no
-        editor yet (the full walk: "07_move_the_robot.ipynb has no code cell 12")."""
-        find = (
-            f"(index) => {{ {_FRONT}\n const cell = codeCells()[index];"
-            " if (!cell) return null; front().content.scrollToCell(cell, 'center');"
-            " return cell.node.querySelector('.jp-InputArea-editor'); }"
+        under a notification). JupyterLab draws a long notebook's cells in idle time: on a
+        loaded host the last one had no editor yet (the full walk: "07_move_the_robot.ipynb
+        has no code cell 12"), so its editor is waited for, and asked for by scrolling to the
+        cell only if it is still missing (a scroll to a cell keeps it pinned while the
+        notebook's layout changes: a 3D view's page was then never still enough to click)."""
+        editor_of = (
+            f"([index, scroll]) => {{ {_FRONT}\n const cell = codeCells()[index];"
+            " if (!cell) return null;"
+            " const editor = cell.node.querySelector('.jp-InputArea-editor');"
+            " if (!editor && scroll) front().content.scrollToCell(cell, 'nearest');"
+            " return editor; }"
         )
-        with contextlib.suppress(PlaywrightTimeout):
-            self.page.wait_for_function(find, arg=index, timeout=_DRAWN_MS, polling=POLL_MS)
-        editor = self.page.evaluate_handle(find, index).as_element()
+        for scroll in (False, True):
+            with contextlib.suppress(PlaywrightTimeout):
+                self.page.wait_for_function(
+                    editor_of, arg=[index, scroll], timeout=_DRAWN_MS, polling=POLL_MS
+                )
+                break
+        editor = self.page.evaluate_handle(editor_of, [index, False]).as_element()
         assert editor is not None, f"{self.current()} has no code cell {index}"
         editor.click(position={"x": 8, "y": 8})
 
