@@ -12,6 +12,8 @@ from pathlib import Path
 import pytest
 
 from course_lib.core.paths import runtime_dir
+from course_lib.core.procfs import cmdline
+from course_lib.core.waiting import wait_until
 from course_lib.processes.ownership import is_course_lab
 
 
@@ -31,6 +33,8 @@ def course_like() -> Iterator[int]:
         [sys.executable, "-c", "import time; time.sleep(60)", "course_lib", "lab"]
     )
     try:
+        # until it has exec'd, the child shows its parent's command (ci: is_course_lab False)
+        assert wait_until(lambda: "course_lib" in (cmdline(process.pid) or ()), 10.0)
         yield process.pid
     finally:
         process.kill()
