@@ -51,6 +51,10 @@ class GraphWatch:
         self._followers: dict[int, tuple[str, Callable[[Identity], None]]] = {}
         self._lock = threading.Lock()
         self._timer: Any = None
+        # nodes once seen with a /parameter_events publisher: for them the name alone never
+        # says "running" (a stopped node's name can linger in the graph's node list: the ghost
+        # of ros2/ros2#1413; ci saw a panel that never said its stopped node was gone)
+        self._with_events: set[str] = set()
 
     def identity(self, node: str) -> Identity:
         """Return the GIDs of `node`'s /parameter_events publishers (a node made without one:
@@ -64,10 +68,13 @@ class GraphWatch:
             full = _full_name(info.node_namespace, info.node_name)
             if full in gids:
                 gids[full].add(bytes(info.endpoint_gid))
-        if not all(gids.values()):
+        with self._lock:
+            self._with_events |= {node for node, found in gids.items() if found}
+            by_name = {node for node, found in gids.items() if not found} - self._with_events
+        if by_name:
             listed = {_full_name(ns, n) for n, ns in graph.get_node_names_and_namespaces()}
             for node, found in gids.items():
-                if not found and node in listed:
+                if node in by_name and node in listed:
                     found.add(node.encode())
         return {node: frozenset(found) for node, found in gids.items()}
 
