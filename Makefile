@@ -25,7 +25,7 @@ hub: setup  ## Start the class's JupyterHub (as root: `sudo make hub`; settings 
 	$(PY) -m course_lib hub $(EXTRA)
 
 test: setup  ## Run the whole test suite (unit, integration, notebooks, browser)
-	$(PY) -m course_lib test
+	$(PY) tests/harness/run_suite.py
 
 test-fast: setup  ## Unit tests only (no ROS, milliseconds)
 	$(PY) -m pytest tests/unit -q
@@ -45,8 +45,8 @@ check-config: setup  ## Check every file of config/, alone and together (ARGS="-
 smoke-python:  ## Prove CPython 3.12 as well: fresh venv, environment.txt, rclpy + MuJoCo smoke
 	scripts/smoke_python.sh $(SMOKE_PYTHON)
 
-lint: setup  ## ruff lint and format check; the layers contract (imports only point down)
-	$(VENV)/bin/ruff check . && $(VENV)/bin/ruff format --check . && $(VENV)/bin/lint-imports --no-cache
+lint: setup  ## ruff lint and format check; the layers contract (imports only point down); mypy
+	$(VENV)/bin/ruff check . && $(VENV)/bin/ruff format --check . && $(VENV)/bin/lint-imports --no-cache && $(VENV)/bin/mypy course_lib
 
 format: setup
 	$(VENV)/bin/ruff format . && $(VENV)/bin/ruff check --fix .

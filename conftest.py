@@ -3,6 +3,6 @@ outputs never depend on the machine)."""
 
 import os
 
-from course_lib.tools.testing import TEST_ENV
+from course_lib.tools.notebook_outputs import OUTPUT_ENV
 
-os.environ.update(TEST_ENV)
+os.environ.update(OUTPUT_ENV)

@@ -18,12 +18,12 @@ from typing import Any
 
 import psutil
 from jupyter_client.manager import KernelManager
+from suite_env import independent_env
 
+from course_lib.core.host.procfs import pid_namespace
 from course_lib.core.paths import REPO_ROOT, runtime_dir
-from course_lib.core.procfs import pid_namespace
 from course_lib.lab.protocol import SOCKET_ENV
 from course_lib.processes.children import OWNER_ENV, OWNER_NS_ENV, ChildProcess, owner_tag, spawn
-from course_lib.tools.testing import independent_env
 
 __all__ = ["Lab", "LabKernel", "start_lab", "tree_pids"]
 

@@ -48,7 +48,7 @@ from bench._capacity_report import (
     summary,
 )
 from bench._labs import Lab, LabKernel, start_lab, tree_pids
-from course_lib.core.procfs import environ as process_environ
+from course_lib.core.host.procfs import environ as process_environ
 from course_lib.processes.children import NAME_ENV
 
 OTHERS_LIMIT = 0.25  # cores used outside the bench that make a failed round suspect

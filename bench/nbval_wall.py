@@ -11,9 +11,10 @@ import subprocess
 import sys
 import time
 
+from run_suite import pytest_argv
+from suite_env import TEST_ENV
+
 from course_lib.core.paths import NOTEBOOKS_DIR, REPO_ROOT
-from course_lib.tools.suite import pytest_argv
-from course_lib.tools.testing import TEST_ENV
 
 
 def main() -> None:

@@ -1,8 +1,8 @@
 """What tracing parameter changes costs: ms added to a `param set` through each door, and bytes.
 
 Run: .venv/bin/python -m bench.param_trace_cost
-Each course door journals its request (one extra `get_parameters` for the old values, one
-locked append) before the set; the kernel journals each /parameter_events message it hears.
+Each course door journals its request (the old values from the journal's tail, one locked
+append) before the set; the kernel journals each /parameter_events message it hears.
 Timed here: the magic, the panel and the Python API in this process with the journal on and
 off, the terminal's `ros2` through its daemon (journal on: the daemon runs the same client
 code), one append alone, and building a history from a full journal.
@@ -24,7 +24,7 @@ from course_lib.notebook.history import build_history
 from course_lib.notebook.magics import run_line
 from course_lib.notebook.widgets.events import parameter_events
 from course_lib.ros2.api import nodes_and_params as api
-from course_lib.ros2.node.client import RosClient
+from course_lib.ros2.node.set_journal import SetJournal
 from course_lib.session.session import get_session
 
 RUNS = 30
@@ -33,12 +33,14 @@ NODE = "/param_vel_node"
 
 @contextmanager
 def _journal_off() -> Any:
-    real = RosClient._journal_request
-    RosClient._journal_request = lambda self, node, values: []  # type: ignore[method-assign]
+    real = SetJournal.old_values, SetJournal.record_request, SetJournal.record_answer
+    SetJournal.old_values = lambda self, node, names, writers: dict.fromkeys(names)  # type: ignore[method-assign]
+    SetJournal.record_request = lambda self, node, values, old, writers: []  # type: ignore[method-assign]
+    SetJournal.record_answer = lambda self, node, values, marks, results: None  # type: ignore[method-assign]
     try:
         yield
     finally:
-        RosClient._journal_request = real  # type: ignore[method-assign]
+        SetJournal.old_values, SetJournal.record_request, SetJournal.record_answer = real  # type: ignore[method-assign]
 
 
 def _median_ms(action: Callable[[float], Any]) -> float:

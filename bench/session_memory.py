@@ -12,9 +12,9 @@ import threading
 
 import psutil
 from jupyter_client.manager import KernelManager
+from suite_env import TEST_ENV
 
 from course_lib.core.paths import REPO_ROOT
-from course_lib.tools.testing import TEST_ENV
 
 LESSON = """
 %load_ext course_lib.notebook.magics

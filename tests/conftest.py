@@ -36,7 +36,7 @@ _RERUN_TAIL = 40  # lines of each rerun's failure shown at the end of the run
 # unlinked the file as it started, and the reason for ci54's one rerun was lost.
 _RERUNS_KEPT_ENV = "COURSE_RERUNS_KEPT"
 _keeps_reruns = False
-# Each test's CPU, with every process it started (tests/support/cpu_by_test.py), summed by file
+# Each test's CPU, with every process it started (tests/harness/cpu_by_test.py), summed by file
 # at the end of the run. The variable holds the pid of the run that owns the figures.
 CPU_FOLDER = REPO_ROOT / "test-artifacts" / "cpu"
 _CPU_OWNER_ENV = "COURSE_CPU_BY_TEST"
@@ -82,7 +82,7 @@ def pytest_sessionstart(session: pytest.Session) -> None:
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     """Deal the longest files first, those that wait for the learners' environment after each
-    worker's first (tests/support/file_order.py). Never rerun a notebook's
+    worker's first (tests/harness/file_order.py). Never rerun a notebook's
     cell: a rerun runs it alone in a fresh kernel, without the cells before it (CI saw lesson
     2's self-check fail with "name 'lesson' is not defined" after its cell 5 was rerun), which
     hides the first failure behind a false one."""

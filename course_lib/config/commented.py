@@ -107,7 +107,7 @@ def settings_rows(file: str, schema: type, prefix: str = "") -> list[str]:
     hints = typing.get_type_hints(schema)
     for field in dataclasses.fields(schema):
         key, hint = f"{prefix}{field.name}", hints[field.name]
-        if dataclasses.is_dataclass(hint):
+        if isinstance(hint, type) and dataclasses.is_dataclass(hint):
             rows += settings_rows(file, hint, f"{key}.")
             continue
         default = field.default

@@ -11,8 +11,9 @@ import dataclasses
 import difflib
 import types
 import typing
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Literal, TypeVar, Union
+from typing import TYPE_CHECKING, Any, Literal, TypeVar, Union
 
 import yaml
 
@@ -31,7 +32,10 @@ __all__ = [
     "setting",
 ]
 
-T = TypeVar("T")
+if TYPE_CHECKING:
+    from _typeshed import DataclassInstance
+
+T = TypeVar("T", bound="DataclassInstance")  # a schema: a dataclass
 _NONE = type(None)
 
 
@@ -86,7 +90,7 @@ class _Converter:
             if node.tag == "tag:yaml.org,2002:null":
                 return None
             return self.convert(node, options[0], key)
-        if dataclasses.is_dataclass(hint_type):
+        if isinstance(hint_type, type) and dataclasses.is_dataclass(hint_type):
             return self.dataclass(node, hint_type, key)
         if origin is tuple:
             return self.sequence(node, typing.get_args(hint_type), key)
@@ -148,7 +152,7 @@ class _Converter:
     def dataclass(self, node: yaml.Node, schema: type[T], key: str) -> T:
         if not isinstance(node, yaml.MappingNode):
             raise self.fail(node, key, "expected a mapping of keys", "write `key: value` lines.")
-        fields = {f.name: f for f in dataclasses.fields(schema)}  # type: ignore[arg-type]
+        fields = {f.name: f for f in dataclasses.fields(schema)}
         hints = typing.get_type_hints(schema)
         values: dict[str, Any] = {}
         lines: dict[str, yaml.Node] = {}
@@ -195,7 +199,7 @@ class _Converter:
         seen.add(name)
 
     def check_limits(self, node: yaml.Node, meta: Any, value: Any, key: str) -> None:
-        tests = {
+        tests: dict[str, tuple[Callable[[Any, Any], bool], str]] = {
             "gt": (lambda v, b: v > b, "greater than"),
             "ge": (lambda v, b: v >= b, "at least"),
             "lt": (lambda v, b: v < b, "less than"),

@@ -113,7 +113,7 @@ def _hook_actions(prefix: Path) -> list[tuple[str, str, str]]:
 
     They are read again only when a package's hook file changed (colcon rewrites it at each
     build of that package): each terminal command's environment starts from them in the
-    daemon, where parsing them took about 4 ms of every command.
+    daemon, so no command parses them again.
     """
     packages_dir = prefix / "share" / "colcon-core" / "packages"
     names = sorted(p.name for p in packages_dir.iterdir()) if packages_dir.is_dir() else []

@@ -7,12 +7,13 @@ so lines of several processes never interleave and a crash leaves at most a line
 skips. It outlives kernels; `lesson.history()` reads it. Pure file code: no ROS.
 
 Records (`"t"`): `set` (a course door is about to set a parameter: door, node, name, value,
-old), `failed` (that set was refused), `event` (a /parameter_events message a kernel saw),
-`start` (the course started a node: its `--ros-args`, from where; a terminal's `ros2 run` also
-the pid, as its log goes to the terminal and the node's name is learnt from the graph),
+old, and `writers`: the GIDs that tell that node from a restarted one), `failed` (that set was
+refused), `event` (a /parameter_events message a kernel saw), `start` (the course started a
+node: its `--ros-args`, from where; a terminal's `ros2 run` also the pid, as its log goes to
+the terminal and the node's name is learnt from the graph),
 `named` (a started process's node name, learnt from its log), `stopped` (a lesson's new driver
 of the robot stopped another lesson's node: which node, who had started it, who stopped it and
-for which node).
+for which node). A long-lived reader follows the file with a `JournalTail`.
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from .paths import runtime_dir
 
 __all__ = [
     "JOURNAL_MAX_BYTES",
+    "JournalTail",
     "acting_door",
     "append",
     "current_door",
@@ -104,12 +106,7 @@ def append(domain: int | str | None, record: dict[str, Any]) -> None:
         os.close(fd)  # closing releases the lock
 
 
-def read_journal(domain: int | str) -> list[dict[str, Any]]:
-    """Return the domain's records, oldest first (unreadable lines skipped)."""
-    try:
-        raw = journal_path(domain).read_bytes()
-    except OSError:
-        return []
+def _records(raw: bytes) -> list[dict[str, Any]]:
     records = []
     for line in raw.splitlines():
         with contextlib.suppress(ValueError):
@@ -117,6 +114,67 @@ def read_journal(domain: int | str) -> list[dict[str, Any]]:
             if isinstance(record, dict):
                 records.append(record)
     return records
+
+
+def read_journal(domain: int | str) -> list[dict[str, Any]]:
+    """Return the domain's records, oldest first (unreadable lines skipped)."""
+    try:
+        raw = journal_path(domain).read_bytes()
+    except OSError:
+        return []
+    return _records(raw)
+
+
+class JournalTail:
+    """Read a domain's journal as it grows: each `read` returns only the records appended
+    since the last one (the first, those of the last `start_bytes`), so that a reader that
+    keeps up costs a few lines per read. When the file was cut (`_trim`) or replaced since,
+    `read` starts over."""
+
+    def __init__(self, domain: int | str, *, start_bytes: int | None = None) -> None:
+        self._domain = domain
+        self._start_bytes = start_bytes
+        self._offset = 0
+        self._last_line = b""  # the whole line that ends at `_offset`: it is still there?
+
+    def read(self) -> tuple[list[dict[str, Any]], bool]:
+        """Return the new records, oldest first, and whether the reading started over (the
+        records read before are no longer all in the file: forget them)."""
+        had_read = self._offset > 0
+        try:
+            with open(journal_path(self._domain), "rb") as handle:
+                if not self._continues(handle):
+                    self._offset, self._last_line = 0, b""
+                restarted = had_read and self._offset == 0
+                if not self._offset:
+                    self._offset = self._start(handle)
+                handle.seek(self._offset)
+                data = handle.read()
+        except OSError:  # no journal (yet, or any more)
+            self._offset, self._last_line = 0, b""
+            return [], had_read
+        whole = data[: data.rfind(b"\n") + 1]  # a line being written is read next time
+        if whole:
+            self._offset += len(whole)
+            self._last_line = whole[whole.rfind(b"\n", 0, len(whole) - 1) + 1 :]
+        return _records(whole), restarted
+
+    def _start(self, handle: Any) -> int:
+        """Return where a first read starts: the first whole line of the last `start_bytes`."""
+        size = os.fstat(handle.fileno()).st_size
+        if self._start_bytes is None or size <= self._start_bytes:
+            return 0
+        handle.seek(size - self._start_bytes - 1)
+        return int(handle.tell()) + len(handle.readline())
+
+    def _continues(self, handle: Any) -> bool:
+        if not self._offset:
+            return True
+        size = os.fstat(handle.fileno()).st_size
+        if size < self._offset:
+            return False
+        mark = os.pread(handle.fileno(), len(self._last_line), self._offset - len(self._last_line))
+        return mark == self._last_line
 
 
 def record_start(

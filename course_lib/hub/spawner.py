@@ -17,7 +17,7 @@ from jupyterhub.spawner import LocalProcessSpawner, set_user_setuid
 from traitlets import Bool, Int, List, Unicode
 
 from ..core.errors import DomainUnavailableError
-from ..core.signalling import send
+from ..core.host.signalling import send
 from ..processes.domain import DOMAIN_ENV, candidate_domains, domain_in_use
 from .guard.routes import forget_route, pin_route
 from .guard.runtime_leftovers import account_identity, clear_for_account
@@ -262,11 +262,12 @@ async def run_bounded(
         *argv, preexec_fn=preexec_fn, env=env, cwd="/",
         stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.STDOUT,
     )  # fmt: skip
-    assert process.stdout is not None
+    stdout = process.stdout
+    assert stdout is not None  # asked for: stdout=PIPE
 
     async def collect() -> bytes:
         kept = bytearray()
-        while chunk := await process.stdout.read(65536):  # type: ignore[union-attr]
+        while chunk := await stdout.read(65536):
             kept += chunk[: max(0, OUTPUT_LIMIT - len(kept))]  # the rest is read, not kept
         await process.wait()
         return bytes(kept)

@@ -10,8 +10,8 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
+from ..core.host.procfs import start_time
 from ..core.paths import NOTEBOOKS_DIR, PACKAGE_DIR, REPO_ROOT, runtime_dir, venv_bin_dir
-from ..core.procfs import start_time
 from ..core.server_urls import SERVER_ROOT_ENV
 from ..processes.children import ChildProcess, spawn
 from ..processes.domain import lease_domain
@@ -50,7 +50,7 @@ def course_server_options() -> list[str]:
         f"--LabApp.app_settings_dir={LAB_SETTINGS_DIR}",
         f"--LabApp.extra_labextensions_path={LAB_EXTENSIONS_DIR}",
         # a saved notebook keeps no live 3D view or widget (they would show errors reopened)
-        "--ContentsManager.pre_save_hook=course_lib.core.live_outputs.scrub_on_save",
+        "--ContentsManager.pre_save_hook=course_lib.core.files.live_outputs.scrub_on_save",
         # Where Node.js is installed (a hub host has it for its proxy), JupyterLab ran it per
         # server start and page load: `npm prefix -g` (jupyter-lsp looking for language
         # servers: the course ships none) and, for the page's build check (off in

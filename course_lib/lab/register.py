@@ -13,7 +13,7 @@ import signal
 import threading
 from dataclasses import asdict, dataclass
 
-from ..core.signalling import send
+from ..core.host.signalling import send
 from ..core.waiting import wait_until
 from ..processes.children import owner_tag
 

@@ -27,7 +27,8 @@ _log = logging.getLogger(__name__)
 
 class _Handler(socketserver.StreamRequestHandler):
     def handle(self) -> None:
-        service: MachineService = self.server.machine  # type: ignore[attr-defined]
+        assert isinstance(self.server, _Server)  # the only server this handler serves
+        service = self.server.machine
         line = self.rfile.readline(MAX_LINE)
         if not line:
             return
@@ -45,6 +46,7 @@ class _Handler(socketserver.StreamRequestHandler):
 
 class _Server(socketserver.ThreadingMixIn, socketserver.UnixStreamServer):
     daemon_threads = True
+    machine: MachineService
 
 
 class MachineService:
@@ -60,7 +62,7 @@ class MachineService:
                 r.get("config"), float(r.get("timeout", 30))
             ),
             "world.status": lambda _r: self.world.status(),
-            "world.stop": lambda _r: self.world.stop() or {},
+            "world.stop": self._stop_world,
             "node.take": self._take,
             "node.stop": lambda r: {"stopped": bool(self.nodes.stop(str(r["tag"])))},
             "node.register": self._register,
@@ -77,6 +79,10 @@ class MachineService:
             return failure(f"unknown request {op!r}", f"known: {', '.join(sorted(self._ops))}")
         return {"ok": True, **handler(request)}
 
+    def _stop_world(self, _request: dict[str, Any]) -> dict[str, Any]:
+        self.world.stop()
+        return {}
+
     def _take(self, request: dict[str, Any]) -> dict[str, Any]:
         record = self.nodes.take(str(request["executable"]))
         return {"stopped": record.as_dict() if record else None}
@@ -90,7 +96,7 @@ class MachineService:
         """Listen on the socket in a background thread."""
         self.path.unlink(missing_ok=True)
         server = _Server(str(self.path), _Handler)
-        server.machine = self  # type: ignore[attr-defined]
+        server.machine = self
         self.path.chmod(0o600)
         self._server = server
         self._thread = threading.Thread(

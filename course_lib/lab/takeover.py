@@ -16,7 +16,8 @@ import os
 import threading
 from dataclasses import dataclass
 
-from ..core import param_journal, procfs
+from ..core import param_journal
+from ..core.host import procfs
 from ..processes.children import ChildProcess, OutputLine, owner_tag
 from .client import machine_client
 from .register import NodeRecord, NodeRegister, node_name_from_log
@@ -91,7 +92,13 @@ def _register(child: ChildProcess, executable: str, node: str, label: str) -> No
         param_journal.append(domain, {"t": "named", "exe": executable, "node": node})
     client = machine_client()
     if client is not None:
-        client.request("node.register", **record.as_dict())
+        client.request(
+            "node.register",
+            executable=record.executable,
+            node=record.node,
+            tag=record.tag,
+            label=record.label,
+        )
     else:
         _local.register(record)
 

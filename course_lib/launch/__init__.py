@@ -9,7 +9,8 @@ Layout (folders depend downward; the import-linter contract in pyproject.toml ch
   descriptions, `loading` (launch files; the XML/YAML front end registers itself there),
   `real_names` (what the real modules export).
 - `api/`: `actions`, `conditions`, `process` (`ExecuteProcess`), `substitutions`,
-  `logic_substitutions`, `event_actions`, `substitution_syntax` (the `$(...)` language).
+  `logic_substitutions`, `event_actions`, `substitution_syntax` (the `$(...)` language),
+  `exposure` (`@expose_action`/`@expose_substitution`: where launch files find a class).
 - `ros/`: launch_ros's `Node`, its `parameters`, `declared` (what a node declares).
 - `frontend/`: XML and YAML launch files (`reader`).
 - `runtime/`: `process_runner` (one process), `service` (the event loop), `screen` (output),

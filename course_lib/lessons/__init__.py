@@ -9,7 +9,8 @@ from pathlib import Path
 from typing import Any
 
 from ..config.together import load_checked_settings
-from .lesson import TITLES, Lesson
+from .catalogue import TITLES
+from .lesson import Lesson
 from .report import Check, SelfCheck
 from .settings import CourseSettings
 
@@ -62,7 +63,7 @@ def start(number: int, *, settings_path: str | None = None) -> Lesson:
         previous.replay.close()
     if previous is not None and previous.session is session:
         previous.stop_nodes()
-        lesson._world = previous._world
+        lesson._world = previous.attached_world  # the same world, kept running
         if lesson._world is not None and lesson._world.alive:
             lesson._world.reset()
     start_recording(lesson)  # a driving lesson records its run for its replay (replay/)

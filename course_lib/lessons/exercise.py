@@ -21,7 +21,7 @@ from typing import Any, ClassVar
 from ..config.trip import Trip, answer_trip
 from ..core.errors import CourseError
 from ..core.param_journal import acting_door
-from .checks import only_driver, other_drivers
+from .catalogue.shared import only_driver, other_drivers
 from .files import Text
 from .judging import NODE, Held, TravelAttempt, Verdict, holds_text, judge_travel, replay
 from .skills.attempts import AttemptLog

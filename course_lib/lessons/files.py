@@ -6,7 +6,7 @@ import difflib
 import os
 from pathlib import Path
 
-from ..core.atomic_files import atomic_write
+from ..core.files.atomic_files import atomic_write
 from ..core.paths import REPO_ROOT, learner_notebooks_dir
 
 __all__ = [

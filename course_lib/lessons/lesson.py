@@ -6,10 +6,8 @@ world, run and stop nodes, show their log lines, show and edit files, and the se
 
 from __future__ import annotations
 
-import html
 import os
 import re
-import shlex
 import threading
 import time
 from pathlib import Path
@@ -19,49 +17,15 @@ from ..core.errors import CourseError
 from ..core.paths import REPO_ROOT
 from ..processes.children import ChildProcess
 from . import files
+from .catalogue import lesson_spec, run_checks
 from .report import SelfCheck
+from .running import RUN_PREFIX, LogLines
 from .settings import CourseSettings
 
-__all__ = ["TITLES", "Lesson", "LogLines"]
+__all__ = ["Lesson", "LogLines"]
 
-TITLES = {
-    1: "Setup check",
-    2: "Key points: parameters live in nodes",
-    3: "The simulation",
-    4: "The parameter_tests package",
-    5: "Run the node",
-    6: "Check parameters",
-    7: "Move the robot with a parameter",
-    8: "Dump parameters",
-    9: "Load a YAML file at start-up",
-    10: "Launch files",
-    11: "Beyond the tutorial",
-}
-RUN_PREFIX = "[ros2run]:"
 _RCLPY_OWN = re.compile(r"'(use_sim_time|start_type_description_service)' .* is not declared")
 _FAILED_LINES = 8  # what `stop` shows of a node that failed on Ctrl-C: its traceback's end
-
-
-class LogLines:
-    """Log lines of a node, shown as its terminal shows them (then the course's hints)."""
-
-    def __init__(self, lines: list[str], hints: list[str] | None = None) -> None:
-        self.lines = lines
-        self.hints = hints or []
-
-    def __repr__(self) -> str:
-        from ..notebook.hints import as_text
-
-        return "".join(f"{line}\n" for line in self.lines) + as_text(self.hints)
-
-    def _repr_html_(self) -> str | None:
-        """Return the lines and the hints set apart, or None (plain text only) without hints."""
-        if not self.hints:
-            return None
-        from ..notebook.hints import as_html
-
-        body = html.escape("".join(f"{line}\n" for line in self.lines))
-        return f'<pre style="margin:0">{body}</pre>{as_html(self.hints)}'
 
 
 class Lesson:
@@ -69,7 +33,7 @@ class Lesson:
 
     def __init__(self, number: int, session: Any, settings: CourseSettings) -> None:
         self.number = number
-        self.title = TITLES[number]
+        self.title = lesson_spec(number).title
         self.session = session
         self.settings = settings
         self.started: dict[str, ChildProcess] = {}
@@ -82,6 +46,11 @@ class Lesson:
 
     def __repr__(self) -> str:
         return f"Lesson {self.number} · {self.title}"
+
+    @property
+    def attached_world(self) -> Any:
+        """Return the world this lesson started or attached to (None before), alive or not."""
+        return self._world
 
     @property
     def velocity(self) -> float:
@@ -158,41 +127,9 @@ class Lesson:
 
     def run(self, package: str, executable: str, *args: str, timeout: float = 10.0) -> LogLines:
         """Start a node like `ros2 run`; show its first log line, or how it failed."""
-        from ..lab.takeover import keep_one_driver, remember, take_over
-        from ..notebook import hints
-        from ..ros2.api.nodes_and_params import client
+        from .running import run_node
 
-        command = " ".join(shlex.quote(a) for a in ("ros2", "run", package, executable, *args))
-        taken = take_over(executable)
-        if taken:
-            print(taken)
-        files = hints.params_files(args)
-        before = {n.full_name for n in client().node_names()} if files else set()
-        child = self.session.run(package, executable, *args, cwd=os.getcwd())
-        self.started[executable] = child
-        child.wait_for_start(timeout)  # a node failing at start-up: to its last line
-        first = None
-        if child.alive:
-            first = child.wait_for_line(lambda line: line.text.startswith("["), timeout)
-        if first is not None and child.alive:
-            remember(child, executable)
-            client().wait_all_seen(timeout=3.0)
-            driver = keep_one_driver(child)
-            if driver:
-                print(driver)
-            notes: list[str] = []
-            if files:
-                now = {n.full_name for n in client().node_names()}
-                started = hints.started_nodes((ln.text for ln in child.lines), before, now)
-                notes = hints.params_file_hints(files, started, client, cwd=os.getcwd())
-            return LogLines([f"$ {command}", first.text], notes)
-        code = child.wait(timeout)
-        last = [ln.text for ln in child.lines if ln.text.strip()][-1:]
-        hint = hints.crash_hint(last, files, cwd=os.getcwd())
-        return LogLines(
-            [f"$ {command}", *last, f"{RUN_PREFIX} Process exited with failure {code}"],
-            [hint] if hint else [],
-        )
+        return run_node(self, package, executable, *args, timeout=timeout)
 
     def log_lines(self, name: str, count: int = 3, timeout: float = 10.0) -> LogLines:
         """Wait for the next `count` log lines of node process `name` and return them."""
@@ -282,7 +219,6 @@ class Lesson:
     # --- self-check ----------------------------------------------------------------------------
     def self_check(self) -> SelfCheck:
         """Run this lesson's self-check: what passed, and what to try for what did not."""
-        from .checks import run_checks
         from .progress.client import report_progress
 
         print(f"Checking lesson {self.number}'s nodes, files and robot ...", flush=True)

@@ -17,7 +17,9 @@ START_WAIT_S = 5.0  # simulated s a still robot gets to start when its node hold
 def _commanded_mps(lesson: Any) -> float:
     """Return the velocity that this lesson's running param_vel_node holds (0.0 if none)."""
     from ..ros2.api import nodes_and_params as api
-    from .checks import own_node  # the `%ros2 run` cell's process as well as lesson.run's
+    from .catalogue.shared import (
+        own_node,
+    )  # the `%ros2 run` cell's process as well as lesson.run's
 
     child = own_node(lesson)
     if child is None or not child.alive:

@@ -5,21 +5,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from .catalogue.spec import Check, check
+
 __all__ = ["Check", "SelfCheck", "check"]
-
-
-@dataclass(frozen=True)
-class Check:
-    """One self-check item: what was checked, whether it passed, and what to try if not."""
-
-    what: str
-    passed: bool
-    hint: str = ""
-
-
-def check(what: str, passed: bool, hint: str = "") -> Check:
-    """Return a Check (`passed` coerced to bool)."""
-    return Check(what, bool(passed), hint)
 
 
 @dataclass(frozen=True)

@@ -1,39 +1,22 @@
-"""The pure hints of a params file given to nodes at start-up: a top-level key that selects no
-node, or a parameter the node does not declare (read as rcl reads keys: `/**`, `*` patterns)."""
+"""The pure hints of a params file given to nodes at start-up: a key that selects no node, or
+a parameter the node does not declare. Which key selects which node, and which files a command
+line gives, are rcl's rules, kept in `ros2/paramfile.py`."""
 
 from __future__ import annotations
 
-import itertools
-import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 import yaml
 
-from ..core.bounded_yaml import safe_load_bounded
 from ..lab.register import node_name_from_log
+from ..ros2.paramfile import key_matches, load_params_text, node_sections
 from .value_hints import closest
 
-__all__ = ["file_sections", "key_matches", "params_files", "section_hints", "started_nodes"]
+__all__ = ["file_sections", "section_hints", "started_nodes"]
 
 
-# --- pure: params files ---------------------------------------------------------------------
-def params_files(argv: Sequence[str]) -> list[str]:
-    """Return the files given to `--params-file` after `--ros-args` in a command line."""
-    tokens = list(argv)
-    if "--ros-args" not in tokens:
-        return []
-    tokens = tokens[tokens.index("--ros-args") + 1 :]
-    return [b for a, b in itertools.pairwise(tokens) if a == "--params-file"]
-
-
-def key_matches(key: str, node: str) -> bool:
-    """Return whether a params file's top-level key selects the node `node` (`/ns/name`):
-    the node's full name (a leading slash may be left out), `/**` or a `*` pattern."""
-    pattern = re.escape("/" + key.lstrip("/")).replace(r"\*\*", ".*").replace(r"\*", "[^/]*")
-    return re.fullmatch(pattern, "/" + node.lstrip("/")) is not None
-
-
+# --- pure: params files --------------------------------------------------------------------
 def _flat_names(tree: Any, prefix: str = "") -> list[str]:
     """Return the dotted parameter names of a `ros__parameters` mapping."""
     if not isinstance(tree, dict):
@@ -46,22 +29,22 @@ def _flat_names(tree: Any, prefix: str = "") -> list[str]:
 
 
 def file_sections(text: str, name: str = "<params>") -> dict[str, list[str]]:
-    """Return each top-level key of a params file with the parameter names under it
-    (empty on a file that is not a mapping: ROS itself reports those)."""
+    """Return each node section of a params file (named as rcl names it: `/ns/name:` or
+    `ns: name:`, a top-level key without `ros__parameters:` as it stands) with the parameter
+    names under it (empty on a file that is not a mapping: ROS itself reports those)."""
     try:
-        data = safe_load_bounded(text, name=name) if text.strip() else None
+        data = load_params_text(text, name=name) if text.strip() else None
     except (yaml.YAMLError, ValueError):
         return {}
-    if not isinstance(data, dict):
-        return {}
-    return {
-        str(key): _flat_names(body.get("ros__parameters") if isinstance(body, dict) else None)
-        for key, body in data.items()
-    }
+    sections: dict[str, list[str]] = {}
+    for section in node_sections(data):
+        names = sections.setdefault(section.name, [])  # rcl merges a name written twice
+        names += [n for n in _flat_names(section.params) if n not in names]
+    return sections
 
 
 def section_hints(
-    file: str, sections: dict[str, list[str]], declared: dict[str, Sequence[str]]
+    file: str, sections: dict[str, list[str]], declared: Mapping[str, Sequence[str]]
 ) -> list[str]:
     """Return the hints for one params file given to the nodes `declared` (node -> names):
     no key selects any of them, or a selected section sets a parameter the node lacks."""

@@ -19,7 +19,8 @@ from pathlib import Path
 from typing import Any
 
 from ..core.errors import CourseError
-from .file_hints import file_sections, key_matches, params_files, section_hints, started_nodes
+from ..ros2.paramfile import key_matches, params_files
+from .file_hints import file_sections, section_hints, started_nodes
 from .run_hints import NO_EXECUTABLE, NO_PACKAGE, file_crash_hint, run_hint, run_words
 from .start_command import last_start_command
 from .value_hints import (

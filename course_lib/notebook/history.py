@@ -12,14 +12,13 @@ Building is pure (records in, table out); only `node_history` reads the file.
 from __future__ import annotations
 
 import html
-import itertools
 import json
 import os
 import time
 from dataclasses import dataclass
 from typing import Any
 
-from ..ros2.paramfile import ParamFileError, read_param_file
+from ..ros2.paramfile import ROS_ARGS, ParamFileError, read_param_file, ros_arguments
 from ..ros2.values import NOT_SET, ParamValue, from_journal, parse_value
 
 __all__ = [
@@ -78,10 +77,16 @@ def format_value(value: ParamValue | None) -> str:
     return repr(raw) if isinstance(raw, float) else str(raw)
 
 
-def _remapped_node(args: list[str]) -> str | None:
+def _ros_arguments(record: dict[str, Any]) -> list[tuple[str, str]]:
+    """Return the (flag, value) pairs rcl reads from a start record's arguments (those after
+    its first `--ros-args`, as core/param_journal.py records them)."""
+    return ros_arguments([ROS_ARGS, *(str(a) for a in record.get("args") or [])])
+
+
+def _remapped_node(pairs: list[tuple[str, str]]) -> str | None:
     """Return the node name `-r __node:=x` (and `__ns`) give, if any."""
     name = ns = None
-    for flag, rule in itertools.pairwise(args):
+    for flag, rule in pairs:
         if flag in ("-r", "--remap") and ":=" in rule:
             key, _sep, value = rule.partition(":=")
             if key.endswith("__node"):
@@ -101,10 +106,10 @@ def _file_values(path: str, node: str, cwd: str | None) -> list[tuple[str, Param
 
 
 def _run_overrides(record: dict[str, Any], node: str) -> list[tuple[str, ParamValue, str]]:
-    args, cwd = list(record.get("args") or []), record.get("cwd")
+    cwd = record.get("cwd")
     door = door_label(str(record.get("door")))
     found: list[tuple[str, ParamValue, str]] = []
-    for flag, value in itertools.pairwise(args):
+    for flag, value in _ros_arguments(record):
         if flag in ("-p", "--param") and ":=" in value:
             name, _sep, text = value.partition(":=")
             found.append((name, parse_value(text), f"-p at start ({door})"))
@@ -132,7 +137,7 @@ def _started_node(records: list[dict[str, Any]], index: int) -> str | None:
     record = records[index]
     if record.get("node"):
         return str(record["node"])
-    remapped = _remapped_node(list(record.get("args") or []))
+    remapped = _remapped_node(_ros_arguments(record))
     if remapped:
         return remapped
     for later in records[index + 1 :]:

@@ -166,7 +166,7 @@ def run_line(line: str) -> CommandResult:
     """Run one `ros2 ...` line (the leading `ros2` is optional) in this kernel's session."""
     from ..ros2.api.nodes_and_params import client
     from ..ros2.command.commands import Context, execute
-    from ..ros2.verbs.console import CollectingConsole
+    from ..ros2.verbkit.console import CollectingConsole
     from ..session.session import get_session
 
     argv = shlex.split(line)

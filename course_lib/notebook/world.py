@@ -12,11 +12,11 @@ import os
 import threading
 import time
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
 from ..config.simulation import SimulationSettings
 from ..core.errors import CourseError
-from ..processes.children import ChildProcess
+from ..processes.children import OutputLine
 from ..sim.world.kinematics import Pose2D, yaw_from_quat
 from ..sim.world.samples import SAMPLES_TOPIC, RobotSample, unpack
 
@@ -36,6 +36,25 @@ class OdomReading:
     angular_radps: float
 
 
+class SimulationProcess(Protocol):
+    """What a World uses of its simulation's process: the session's `ChildProcess`, or in a
+    lab the lab's (`lab.remote.LabProcess`)."""
+
+    @property
+    def pid(self) -> int: ...
+
+    @property
+    def alive(self) -> bool: ...
+
+    @property
+    def returncode(self) -> int | None: ...
+
+    @property
+    def lines(self) -> list[OutputLine]: ...
+
+    def stop(self, *, timeout: float = 5.0) -> int | None: ...
+
+
 def _reading(sample: RobotSample) -> OdomReading:
     yaw = yaw_from_quat(sample.qw, sample.qx, sample.qy, sample.qz)
     return OdomReading(
@@ -50,7 +69,7 @@ class World:
         self,
         session: Any,
         settings: SimulationSettings,
-        process: ChildProcess,
+        process: SimulationProcess,
         viewer: Any = None,
         *,
         shared: bool = False,

@@ -11,7 +11,7 @@ A domain is leased only if no other process on this host uses it:
 
 Children inherit the id through ``ROS_DOMAIN_ID`` and need no lease of their own. This module
 needs only the standard library (tests run it as other Unix users with the system Python),
-and so does `core.procfs`, which reads the UDP tables for it.
+and so does `core.host.procfs`, which reads the UDP tables for it.
 """
 
 from __future__ import annotations
@@ -22,8 +22,8 @@ import socket
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 
-from ..core import procfs
 from ..core.errors import DomainUnavailableError
+from ..core.host import procfs
 
 __all__ = [
     "DOMAIN_ENV",

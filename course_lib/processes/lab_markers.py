@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..core import procfs
+from ..core.host import procfs
 from ..core.paths import runtime_dir
 
 __all__ = [

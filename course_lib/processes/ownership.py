@@ -6,7 +6,7 @@ A process of this user is the course's when
   Kernels' nodes, simulations and viewers, a lab's JupyterLab and daemon, launch's nodes;
 - it is a leftover: its ``COURSE_OWNER`` names a process that is gone, and it runs the
   command the course started it with, or it is a ROS process (a DDS socket) of its domain
-  (the same rule as `processes.reap_orphans`);
+  (the same rule as `orphans.reap_orphans`);
 - it serves a Unix socket in the runtime folder (the ``ros2`` daemons, a lab's service);
 - it is a running `make lab`, found by its ``lab-<pid>.*`` marker in the runtime folder.
 
@@ -23,9 +23,10 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..core import procfs
+from ..core.host import procfs
 from ..core.paths import REPO_ROOT, runtime_dir
-from .children import (
+from .lab_markers import recorded_start
+from .orphans import (
     CLONE_ENV,
     NAME_ENV,
     OWNER_ENV,
@@ -34,7 +35,6 @@ from .children import (
     started_by_course,
     tag_names,
 )
-from .lab_markers import recorded_start
 
 __all__ = [
     "LAB_ENV",
@@ -82,8 +82,8 @@ class ProcessInfo:
     @property
     def clone(self) -> str:
         """Return the folder of the clone whose course started this process: its tag, or for
-        an untagged one (started before clones were tagged) the clone its command runs from
-        when that is this one; "" when unknown."""
+        an untagged one the clone its command runs from when that is this one; "" when
+        unknown."""
         if self.env.get(CLONE_ENV):
             return self.env[CLONE_ENV]
         here = f"{REPO_ROOT}{os.sep}"

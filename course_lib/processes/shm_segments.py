@@ -5,7 +5,7 @@ own, `fastrtps_<16 hex digits>` (about 0.5 MiB), and holds an exclusive lock (fl
 empty file `fastrtps_<id>_el` beside it for as long as the participant lives. A participant
 that ends cleanly removes both; one that is killed (a kernel killed with its nodes, a program
 stopped with SIGKILL) never does. /dev/shm is memory: on a host that stays up the leftovers
-add up (1.4 GiB after a day of this course's test runs; a pod's /dev/shm holds 256 MiB).
+add up, half a MiB for each participant killed (a pod's /dev/shm holds 256 MiB).
 
 A segment is a leftover when nobody holds its lock and its lock file is older than a minute (a
 participant locks the file it has just made at once; the minute spares one doing so now). Only

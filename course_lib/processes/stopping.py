@@ -21,8 +21,8 @@ import contextlib
 import signal
 from dataclasses import dataclass, field
 
+from ..core.host.signalling import send
 from ..core.paths import REPO_ROOT
-from ..core.signalling import send
 from ..core.waiting import wait_until
 from .ownership import CourseProcess, course_processes, current_lab, own_programs, read_process
 from .shm_segments import Swept, sweep_stale_segments

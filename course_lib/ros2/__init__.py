@@ -8,6 +8,11 @@ session's client node (course_lib.session.session) when they run.
 from __future__ import annotations
 
 import importlib
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..processes.children import ChildProcess
 
 _EXPORTS = {
     **dict.fromkeys(
@@ -61,7 +66,7 @@ def __getattr__(name: str) -> object:  # not `Any`: importing typing costs a `ro
     return value
 
 
-def start_daemon(env):  # type: ignore[no-untyped-def]
+def start_daemon(env: Mapping[str, str]) -> ChildProcess:
     """Start the terminal commands' daemon for env's ROS_DOMAIN_ID (see ros2.command.daemon)."""
     from .command.daemon import start_daemon as _start
 

@@ -51,7 +51,7 @@ def _value(value: Any, field_type: Any, limit: int | None, no_arr: bool, no_str:
         if no_str and isinstance(value, str):
             value = f"<string length: <{len(value)}>>"
         elif isinstance(value, (bytes, str)) and limit is not None and len(value) > limit:
-            value = value[:limit] + (b"..." if isinstance(value, bytes) else "...")
+            value = value[:limit] + b"..." if isinstance(value, bytes) else value[:limit] + "..."
         return str(value)
     return message_to_csv(value, truncate_length=limit, no_arr=no_arr, no_str=no_str)
 

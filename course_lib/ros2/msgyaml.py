@@ -33,7 +33,7 @@ def array_info(value: Any, field_type: Any) -> str:
     kind = type(field_type).__name__
     inner = getattr(field_type, "value_type", None)
     name = getattr(inner, "typename", None) or getattr(inner, "name", None) or "unknown"
-    if hasattr(inner, "namespaced_name"):
+    if inner is not None and hasattr(inner, "namespaced_name"):
         name = "/".join(inner.namespaced_name())
     elif type(inner).__name__ in ("UnboundedString", "BoundedString"):
         name = "string"

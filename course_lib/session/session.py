@@ -13,13 +13,18 @@ import os
 import threading
 import time
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..core import ament, param_journal
 from ..core.errors import SessionClosedError, SessionThreadError
 from ..core.paths import PACKAGE_DIR
-from ..processes.children import ChildProcess, reap_orphans, spawn
+from ..processes.children import ChildProcess, spawn
 from ..processes.domain import DOMAIN_ENV, isolation_env, lease_domain
+from ..processes.orphans import reap_orphans
+
+if TYPE_CHECKING:  # rclpy is imported when a node starts, not with this module
+    from rclpy.parameter import Parameter
+    from rclpy.task import Future
 
 __all__ = [
     "FASTDDS_PROFILE",
@@ -74,7 +79,7 @@ class SpinningNode:
         domain_id: int,
         owner: str,
         thread_name: str,
-        parameter_overrides: Sequence[Any] = (),
+        parameter_overrides: Sequence[Parameter] = (),
         type_description_service: bool = False,
     ) -> None:
         """Start the node `name` in `domain_id`; `owner` names who it serves in the log."""
@@ -128,7 +133,7 @@ class SpinningNode:
                 self.spin_error = err  # after the log: who sees the error finds it logged
                 return
 
-    def wait_future(self, future: Any, timeout: float) -> Any:
+    def wait_future(self, future: Future, timeout: float) -> Any:
         """Wait for an rclpy future completed by the spin thread; raise TimeoutError."""
         done = threading.Event()
         future.add_done_callback(lambda _f: done.set())
@@ -205,7 +210,7 @@ class Session:
         if self.spin_error is not None:
             raise SessionThreadError(self.spin_error)
 
-    def wait_future(self, future: Any, timeout: float) -> Any:
+    def wait_future(self, future: Future, timeout: float) -> Any:
         """Wait for an rclpy future completed by the spin thread; raise TimeoutError."""
         self._check_open()
         return self._ros.wait_future(future, timeout)
@@ -290,7 +295,7 @@ _current: Session | None = None
 _current_lock = threading.Lock()
 
 
-def get_session(**kwargs: Any) -> Session:
+def get_session(*, domain_id: int | None = None) -> Session:
     """Return this process's session, starting one if there is none or it was closed.
 
     A session whose ROS thread stopped is reported once (SessionThreadError) and closed, so
@@ -303,7 +308,7 @@ def get_session(**kwargs: Any) -> Session:
             _current.close()
             raise SessionThreadError(error)
         if _current is None or _current.closed:
-            _current = Session(**kwargs)
+            _current = Session(domain_id=domain_id)
         return _current
 
 

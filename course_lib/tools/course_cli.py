@@ -43,12 +43,6 @@ def _hub_lab(args: argparse.Namespace) -> int:
     return run_hub_lab(args.extra)
 
 
-def _test(args: argparse.Namespace) -> int:
-    from .suite import run_tests
-
-    return run_tests(args.extra)
-
-
 def _notebooks(args: argparse.Namespace) -> int:
     from .notebook_outputs import refresh_notebooks
 
@@ -118,7 +112,6 @@ COMMANDS = {
     "lab": (_lab, "start JupyterLab on the first lesson"),
     "hub": (_hub, "start the class's JupyterHub (config/hub.yaml; as root)"),
     "hub-lab": (_hub_lab, "a learner's server on the class hub (started by the hub)"),
-    "test": (_test, "run the whole test suite"),
     "notebooks": (_notebooks, "re-execute the notebooks to refresh their stored outputs"),
     "check-config": (_check_config, "check every file of config/, alone and together"),
     "doctor": (_doctor, "say what is installed and which course processes run"),
@@ -134,7 +127,7 @@ def main(argv: list[str] | None = None) -> int:
         # add_help=False: `-h` reaches the command itself (its own options, or jupyter lab's)
         sub.add_parser(name, help=summary, add_help=False).set_defaults(func=func)
     args, extra = parser.parse_known_args(argv)
-    args.extra = extra  # passed through to jupyter lab or pytest
+    args.extra = extra  # passed through to jupyter lab, the hub or the notebooks' refresh
     from ..core.errors import CourseError
 
     try:

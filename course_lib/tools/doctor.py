@@ -116,7 +116,8 @@ def install_checks() -> list[Check]:
 
     env = {**os.environ, "PYTHONPATH": str(REPO_ROOT)}  # this course, from any folder
     with ThreadPoolExecutor(len(_CHECKS)) as pool:  # each waits on a child: side by side
-        return list(pool.map(lambda check: _run_check(*check, env), _CHECKS))
+        running = [pool.submit(_run_check, *check, env) for check in _CHECKS]
+        return [future.result() for future in running]
 
 
 def _version(dist: str) -> str:

@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from ..core.atomic_files import atomic_write
+from ..core.files.atomic_files import atomic_write
 
 __all__ = ["KERNEL_NAME", "LAUNCHER", "install_kernelspec", "kernelspec"]
 

@@ -28,14 +28,14 @@ from pathlib import Path
 from typing import Any
 
 from ..config.course import CourseSettings
-from ..core.live_outputs import scrub_live_outputs
+from ..core.files.live_outputs import scrub_live_outputs
 from ..core.paths import CONFIG_DIR_ENV, NOTEBOOKS_DIR, REPO_ROOT
 from ..lessons.files import LEARNER_DIR
 from ..lessons.skills.attempts import ATTEMPTS_FILE
 from ..lessons.texts import METADATA_KEY, render_cells
-from .testing import TEST_ENV
 
 __all__ = [
+    "OUTPUT_ENV",
     "clean_notebook",
     "first_attempts",
     "refresh_notebook",
@@ -43,6 +43,14 @@ __all__ = [
     "sanitize_rules",
 ]
 
+# The environment the stored outputs are made in (`make notebooks`) and checked in (`make test`),
+# so that they never depend on the machine.
+OUTPUT_ENV = {
+    "RCUTILS_COLORIZED_OUTPUT": "0",
+    "PYTHONHASHSEED": "0",
+    "IPYKERNEL_CELL_NAME": "<IPY-INPUT>",
+    "PYDEVD_DISABLE_FILE_VALIDATION": "1",
+}
 SANITIZE_FILE = REPO_ROOT / "tests" / "nbval_sanitize.cfg"
 IGNORE_TAG = "nbval-ignore-output"
 
@@ -182,7 +190,7 @@ def refresh_notebooks(extra: list[str]) -> int:
     paths = [Path(n) if os.sep in n else NOTEBOOKS_DIR / n for n in names] or sorted(
         NOTEBOOKS_DIR.glob("[0-9][0-9]_*.ipynb")
     )
-    os.environ.update(TEST_ENV)
+    os.environ.update(OUTPUT_ENV)
     failed = 0
     for path in paths:
         try:

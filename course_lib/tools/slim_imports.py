@@ -30,11 +30,12 @@ import importlib
 import importlib.machinery
 import os
 import sys
+from importlib._abc import Loader  # importlib.abc's Loader; importlib.abc imports typing
 from types import ModuleType
 
 TYPE_CHECKING = False  # typing is not imported: this module runs in every start of Python
 if TYPE_CHECKING:
-    from collections.abc import Callable
+    from collections.abc import Callable, Sequence
 
     _Binding = tuple[str, str | None] | Callable[[], str]
 
@@ -125,7 +126,7 @@ def _lazy_attribute(package: str, bindings: dict[str, _Binding]) -> Callable[[st
     return __getattr__
 
 
-class _PackageLoader:
+class _PackageLoader(Loader):
     """Create the package from its real spec; bind its names lazily instead of its __init__."""
 
     def __init__(self, bindings: dict[str, _Binding], all_names: list[str] | None) -> None:
@@ -141,13 +142,13 @@ class _PackageLoader:
 
     def exec_module(self, module: ModuleType) -> None:
         if self._all is not None:
-            module.__all__ = list(self._all)
+            vars(module)["__all__"] = list(self._all)
         module.__getattr__ = _lazy_attribute(module.__name__, self._bindings)  # type: ignore[method-assign]
         names = sorted(self._bindings)
         module.__dir__ = lambda: sorted({*vars(module), *names})  # type: ignore[method-assign]
 
 
-class _DeferredLoader:
+class _DeferredLoader(Loader):
     """Stand in for a module with its one function; load the real module when it is called."""
 
     def __init__(self, real: importlib.machinery.ModuleSpec, function: str) -> None:
@@ -180,7 +181,7 @@ class _Finder:
     """Find the packages as the path finder does, and give them the loader above."""
 
     def find_spec(
-        self, fullname: str, path: object = None, target: object = None
+        self, fullname: str, path: Sequence[str] | None = None, target: ModuleType | None = None
     ) -> importlib.machinery.ModuleSpec | None:
         if fullname in DEFERRED_MODULES:
             real = importlib.machinery.PathFinder.find_spec(fullname, path)
@@ -218,7 +219,7 @@ def install_pth(site_packages: str | None = None) -> str:
     import sysconfig
     from pathlib import Path
 
-    from course_lib.core.atomic_files import atomic_write  # setup only: never at start-up
+    from course_lib.core.files.atomic_files import atomic_write  # setup only: never at start-up
 
     folder = Path(site_packages or sysconfig.get_paths()["purelib"])
     for old in _OLD_PTH_NAMES:

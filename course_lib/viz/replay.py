@@ -20,7 +20,7 @@ import mujoco
 import numpy as np
 import umsgpack
 
-from ..core.atomic_files import atomic_write
+from ..core.files.atomic_files import atomic_write
 from .page_access import PANEL_JS
 from .scene import body_paths, camera_commands, moving_bodies, scene_commands
 from .speed_svg import PLAYHEAD_ID, PLOT_ID
@@ -108,8 +108,8 @@ def _command_js(command: Any) -> str:
 
 
 # The animation starts once the scene has been drawn twice. Started as the page loads, its clock
-# ran through the first frame, which compiles the scene's shaders: on a busy machine that frame
-# outlasted a short replay, which ended (and went back to its start) before it was ever seen.
+# would run through the first frame, which compiles the scene's shaders: on a busy machine that
+# frame can outlast a short replay, which would end (and go back to its start) unseen.
 _PLAY_JS = """requestAnimationFrame(function () {
   requestAnimationFrame(function () { viewer.animator.play(); });
 });

@@ -37,6 +37,7 @@ import sys
 import threading
 from collections.abc import Iterable
 from pathlib import Path
+from typing import cast
 from urllib.parse import urlsplit
 
 import tornado.httpserver
@@ -51,11 +52,10 @@ from meshcat.servers.zmqserver import (
     WebSocketHandler,
     ZMQWebSocketBridge,
 )
+from tornado.platform.asyncio import BaseAsyncIOLoop
 
-from ..core import procfs
-from ..core.paths import runtime_dir
-from ..core.ports import unix_socket_answers
-from .page_access import PANEL_JS, ROBOT_STATE_JS, TOOLBAR_JS
+from .command_sockets import command_socket_url
+from .viewer_page import ViewerPage
 
 __all__ = [
     "ORIGINS_ENV",
@@ -63,126 +63,15 @@ __all__ = [
     "WATCHERS_COMMAND",
     "LocalBridge",
     "ThreadedServer",
-    "command_socket_url",
     "default_origins",
     "main",
     "origin_allowed",
-    "remove_dead_command_sockets",
     "serve_in_thread",
 ]
 
 ORIGINS_ENV = "COURSE_VIEWER_ORIGINS"
 POSES_COMMAND = b"set_transforms"
 WATCHERS_COMMAND = b"watchers"
-
-
-# The toolbar (TF frames, Controls) is one Tab stop; the line under it says where the robot is
-# (page_access). White on at least 70 % black: AA contrast over any part of the scene.
-_PAGE = (
-    """<!DOCTYPE html>
-<html lang="en"><head><meta charset=utf-8><title>3D view of the simulated robot</title>
-<style>body {margin: 0} #meshcat-pane {width: 100vw; height: 100vh; overflow: hidden}
-#view-tools {position: absolute; left: 8px; top: 8px; display: flex; gap: 6px;
-  align-items: center}
-#view-tools > *, #robot-state {padding: 2px 6px; border: 0; border-radius: 4px;
-  font: 13px sans-serif; color: #fff; background: rgba(0, 0, 0, 0.7); user-select: none}
-#robot-state {position: absolute; left: 8px; bottom: 8px; margin: 0}</style>
-</head><body><div id="meshcat-pane"></div>
-<div id="view-tools" role="toolbar" aria-label="3D view">
-<label id="tf-toggle" title="the frames /tf and /tf_static describe (x red, y green, z blue)">
-<input type="checkbox" id="tf-frames"> TF frames</label>
-<button type="button" id="view-controls" aria-expanded="false">Controls</button></div>
-<p id="robot-state" role="status" aria-live="polite" aria-atomic="true">Robot: waiting for
-the simulation</p>
-<script src="main.min.js"></script>
-<script>
-// Drawn on demand: meshcat's own loop (off here) asks the browser for a frame 60 times a
-// second for as long as the page is open, with nothing new to draw; in a browser without a
-// GPU that kept a still robot's view at about a tenth of a core. Here a frame is asked for
-// when meshcat marks the scene changed (a pose, the camera moved, a resize), and each
-// frame of a playing animation asks for the next.
-var viewer = new MeshCat.Viewer(document.getElementById("meshcat-pane"), false);
-(function () {
-  var asked = false;
-  function frame() {
-    asked = false;
-    viewer.animator.update();  // a playing animation marks the scene changed: next frame
-    if (viewer.needs_render) { viewer.render(); }
-  }
-  function ask() {
-    if (!asked) { asked = true; requestAnimationFrame(frame); }
-  }
-  var mark = viewer.set_dirty.bind(viewer);
-  viewer.set_dirty = function () { mark(); ask(); };
-  viewer.animate = ask;  // what meshcat calls to restart its loop after a recording
-  var animator = Object.getPrototypeOf(viewer.animator), play = animator.play;
-  animator.play = function () { play.call(this); ask(); };
-  ask();
-})();
-// One message carries a frame's poses: paths and their 4x4 matrices (column-major), in a row.
-var handle_one = viewer.handle_command.bind(viewer);
-viewer.handle_command = function (command) {
-  if (command.type !== "set_transforms") { return handle_one(command); }
-  for (var i = 0; i < command.paths.length; i++) {
-    handle_one({type: "set_transform", path: command.paths[i],
-                matrix: command.matrices.subarray(16 * i, 16 * i + 16)});
-  }
-};
-// The simulation draws its TF frames under /meshcat/tf, hidden; this box shows them.
-// Drawn on top of the robot's shapes (no depth test): most frames sit inside the chassis.
-document.getElementById("tf-frames").addEventListener("change", function (event) {
-  var frames = viewer.scene_tree.find(["meshcat", "tf"]);
-  frames.object.traverse(function (part) {
-    if (part.material) { part.material.depthTest = false; part.renderOrder = 1; }
-  });
-  viewer.set_property(["meshcat", "tf"], "visible", event.target.checked);
-});
-// The websocket lives at the page's own prefix: "/" directly, "/proxy/<port>/" behind Jupyter.
-var base = location.href.split(/[?#]/)[0].replace(/static\\/(index\\.html)?$/, "");
-viewer.connect(base.replace(/^http/, "ws"));
-// A view nobody can see (its notebook's tab in the background, scrolled out of sight, the
-// browser tab hidden) tells the server so, which then sends it no poses until it is seen
-// again. Frames drawn for a hidden view piled up and froze the page for 15-20 s when its
-// notebook's tab came back. Chromium runs animation frames even in an iframe under
-// `display: none`: what says "seen" is the pane's intersection with the top page's viewport.
-var shown = true, visible = {pane: true, tab: true};
-function tell(now) {
-  shown = now;
-  var socket = viewer.connection;
-  if (socket && socket.readyState === 1) { socket.send(now ? "shown" : "hidden"); }
-}
-function update() {
-  var now = visible.pane && visible.tab;
-  if (now !== shown) { tell(now); }
-}
-new IntersectionObserver(function (entries) {
-  visible.pane = entries[entries.length - 1].isIntersecting;
-  update();
-}).observe(document.getElementById("meshcat-pane"));
-document.addEventListener("visibilitychange", function () {
-  visible.tab = document.visibilityState === "visible";
-  update();
-});
-if (viewer.connection) {
-  viewer.connection.addEventListener("open", function () { if (!shown) { tell(false); } });
-}
-</script>
-<script>
-"""
-    + PANEL_JS
-    + 'accessiblePanel(viewer, document.getElementById("view-controls"));\n'
-    + TOOLBAR_JS
-    + ROBOT_STATE_JS
-    + "</script></body></html>\n"
-)
-
-
-class _ViewerPage(tornado.web.RequestHandler):
-    """meshcat's page, but connecting its websocket relative to where it was served from."""
-
-    def get(self, _name: str = "") -> None:
-        self.set_header("Cache-Control", "no-store")
-        self.write(_PAGE)
 
 
 def _normal(origin: str) -> str:
@@ -226,34 +115,6 @@ class _SameOriginWebSocket(WebSocketHandler):
         self.bridge.count_watchers()
 
 
-def command_socket_url(pid: int | None = None) -> str:
-    """Return the ZMQ address of this process's command socket: private to this user.
-
-    Sockets that killed servers left are removed first (else one file per killed world, for
-    ever: 1012 of them in a runtime folder after two days of tests).
-    """
-    remove_dead_command_sockets()
-    path = runtime_dir() / f"meshcat-{pid or os.getpid()}.sock"
-    path.unlink(missing_ok=True)  # a socket left by a killed server of a reused pid
-    return f"ipc://{path}"
-
-
-def remove_dead_command_sockets() -> list[Path]:
-    """Remove the command sockets of servers that are gone; return them.
-
-    Gone: no process has the pid in the file's name, and nothing answers on the socket (a
-    server of another PID namespace sharing this folder still answers, and is kept).
-    """
-    removed = []
-    for path in runtime_dir().glob("meshcat-*.sock"):
-        pid = path.name.removeprefix("meshcat-").removesuffix(".sock")
-        if not pid.isdigit() or procfs.pid_alive(int(pid)) or unix_socket_answers(path):
-            continue
-        path.unlink(missing_ok=True)
-        removed.append(path)
-    return removed
-
-
 class LocalBridge(ZMQWebSocketBridge):
     """meshcat's bridge bound to one host, on ports the operating system picks.
 
@@ -267,10 +128,10 @@ class LocalBridge(ZMQWebSocketBridge):
     ) -> None:
         self.host = host
         self.origins = tuple(origins)
-        self.websocket_pool = set()
+        self.websocket_pool: set[WebSocketHandler] = set()
         self.app = tornado.web.Application(
             [
-                (r"/static/(index\.html)?", _ViewerPage),
+                (r"/static/(index\.html)?", ViewerPage),
                 (
                     r"/static/(.*)",
                     StaticFileHandlerNoCache,
@@ -376,7 +237,8 @@ class ThreadedServer:
         while none was pending, so there is always one)."""
         with self._lock:
             message, self._pending = self._pending, None
-        self.bridge.forward_poses(message)  # type: ignore[arg-type]
+        # never None: one call per frame offered while none was pending
+        self.bridge.forward_poses(cast(bytes, message))
 
     def stop(self, timeout: float = 5.0) -> None:
         """Stop serving and remove the command socket's file; idempotent."""
@@ -432,7 +294,8 @@ def main(argv: list[str] | None = None) -> int:
 
     # asyncio's own handlers wake the loop even when a zmq thread receives the signal; a plain
     # signal.signal() handler would wait for an event that never comes.
-    loop = bridge.ioloop.asyncio_loop
+    # tornado's IOLoop.current() is an asyncio one (tornado >= 5 runs on asyncio)
+    loop = cast(BaseAsyncIOLoop, bridge.ioloop).asyncio_loop
     for signum in (signal.SIGINT, signal.SIGTERM):
         loop.add_signal_handler(signum, bridge.ioloop.stop)
     try:

@@ -19,7 +19,7 @@ import os
 import re
 from typing import Any
 
-from ..core.live_outputs import LIVE_MARK
+from ..core.files.live_outputs import LIVE_MARK
 from ..core.server_urls import jupyter_base_url
 
 __all__ = ["Viewer", "viewer_url"]
@@ -53,8 +53,10 @@ class Viewer:
         zmq = next((ln.text for ln in process.lines if ln.text.startswith("zmq_url=")), None)
         if line is None or zmq is None:
             return None
-        port = int(re.search(r":(\d+)/static/", line.text).group(1))  # type: ignore[union-attr]
-        return cls(process, zmq.split("=", 1)[1], port)
+        port = re.search(r":(\d+)/static/", line.text)
+        if port is None:
+            return None
+        return cls(process, zmq.split("=", 1)[1], int(port.group(1)))
 
     @property
     def url(self) -> str:

@@ -19,14 +19,14 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
+from suite_env import independent_env
 from unix_accounts import new_home
 from waits import POLL_MS
 
+from course_lib.core.host.ports import free_port
 from course_lib.core.paths import REPO_ROOT
-from course_lib.core.ports import free_port
 from course_lib.core.waiting import wait_until
 from course_lib.processes.children import ChildProcess, spawn
-from course_lib.tools.testing import independent_env
 
 __all__ = [
     "ClassHub",

@@ -98,8 +98,9 @@ def _learners_lab(root: Path, lessons: list[str], extra: Sequence[str] = ()) -> 
     a command finds), `rosject` beside it. Never the repository's own `notebooks/my_files/`.
     The last lab in `root` (a rerun's failed attempt, with its lab.log) is kept beside it as
     `<root>.previous` (ci55 lost the log of a lab whose kernels showed "Disconnected")."""
+    from suite_env import independent_env
+
     from course_lib.core.paths import LEARNER_ROOT_ENV, ROSJECT_DIR
-    from course_lib.tools.testing import independent_env
 
     _keep_as_previous(root)
     (root / "notebooks" / "my_files").mkdir(parents=True)

@@ -11,27 +11,22 @@ from collections.abc import Sequence
 
 from lab_ui import Cell
 
+from course_lib.lessons.catalogue import LESSONS as CATALOGUE
+from course_lib.lessons.catalogue import NUMBERS
+
 __all__ = [
     "LESSONS",
     "PROBES",
+    "WORLD_LESSONS",
     "cell_problems",
     "lesson_number",
     "run_problems",
 ]
 
-LESSONS = [
-    "01_setup_check.ipynb",
-    "02_key_points.ipynb",
-    "03_the_simulation.ipynb",
-    "04_the_parameter_tests_package.ipynb",
-    "05_run_the_node.ipynb",
-    "06_check_parameters.ipynb",
-    "07_move_the_robot.ipynb",
-    "08_dump_parameters.ipynb",
-    "09_load_yaml_at_startup.ipynb",
-    "10_launch_files.ipynb",
-    "11_beyond_the_tutorial.ipynb",
-]
+# Every lesson's notebook, in order, and the lessons whose cells start (or attach to) the lab's
+# world: both from the lesson catalogue (course_lib/lessons/catalogue), never a list of their own.
+LESSONS = [spec.notebook for spec in CATALOGUE]
+WORLD_LESSONS = tuple(spec.number for spec in CATALOGUE if spec.world)
 SELF_CHECK = "lesson.self_check()"
 PASSED = "Everything passed"
 # The figures a full run prints, by lesson: (the cell's source, its last one with it, the text).
@@ -49,6 +44,7 @@ PROBES: dict[int, tuple[str, str]] = {
         "time jumps: 0 | marks: 2",
     ),
 }
+assert set(FIGURES) | set(PROBES) <= set(NUMBERS), "a figure or probe of no lesson in the table"
 # How a course error reads in a cell (stderr, no traceback): "CourseError: ...".
 _COURSE_ERROR = re.compile(r"^[A-Z]\w*Error: .*$", re.M)
 

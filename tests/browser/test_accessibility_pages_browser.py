@@ -22,6 +22,7 @@ from waits import POLL_MS
 
 from course_lib.hub.progress.page import render_error, render_page
 from course_lib.hub.progress.store import ExerciseStats, LessonState
+from course_lib.lessons.catalogue import NUMBERS
 from course_lib.sim.view.live import LiveView
 from course_lib.sim.view.recorder import plan_frames
 from course_lib.sim.world.model import build_model
@@ -255,7 +256,7 @@ def test_the_progress_page_passes_axe_and_says_passed_and_failed_in_words(
     html = render_page(
         ["carol", "alice"],
         states,
-        titles={n: f"Lesson {n}" for n in range(1, 12)},
+        titles={n: f"Lesson {n}" for n in NUMBERS},
         note="Only learners with records are shown: the hub did not answer.",
         exercises=[ExerciseStats("drive", 7, 3, 2, 2.0)],
     )

@@ -16,8 +16,8 @@ from collections.abc import Iterator
 import pytest
 from lab_server import ARTIFACTS, LabServer
 
-from course_lib.core.procfs import environ as process_environ
-from course_lib.core.procfs import pid_alive
+from course_lib.core.host.procfs import environ as process_environ
+from course_lib.core.host.procfs import pid_alive
 from course_lib.core.waiting import wait_until
 from course_lib.processes.children import owner_tag
 from course_lib.ros2.node.connect import daemon_pids, daemon_socket

@@ -17,7 +17,7 @@ from waits import POLL_MS
 pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 
 LESSONS = ["07_move_the_robot.ipynb", "01_setup_check.ipynb"]
-SHOWN = "() => shown"  # the viewer page's own state (course_lib/viz/server.py)
+SHOWN = "() => shown"  # the viewer page's own state (course_lib/viz/viewer_page.py)
 
 
 def _viewer(page):  # type: ignore[no-untyped-def]

@@ -16,8 +16,7 @@ from pathlib import Path
 
 import pytest
 from lab_server import ARTIFACTS, LabServer
-
-from course_lib.tools.testing import independent_env
+from suite_env import independent_env
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 

@@ -18,7 +18,14 @@ from pathlib import Path
 from lab_graph import graph_problems
 from lab_nodes import hosts_of, node_processes
 from lab_ui import LabPage
-from lesson_checks import LESSONS, PROBES, cell_problems, lesson_number, run_problems
+from lesson_checks import (
+    LESSONS,
+    PROBES,
+    WORLD_LESSONS,
+    cell_problems,
+    lesson_number,
+    run_problems,
+)
 from pace import MACHINE_PACE, MISTAKES, Pace
 from terminal import Terminal
 
@@ -42,7 +49,6 @@ RERUNNABLE = (
     "events = lesson.events_table()",
     "lesson.self_check()",
 )
-WORLD_LESSONS = (3, 6, 7, 11)  # the lessons that start (or attach to) the lab's world
 OPEN_CHANCE = 0.6  # of opening one more lesson, while one is left to open
 
 

@@ -31,9 +31,10 @@ def start_kernel() -> Iterator[Callable[[], Kernel]]:
 @pytest.fixture
 def lab_kernel(lab) -> Iterator[Callable[[], Kernel]]:  # type: ignore[no-untyped-def]
     """Start kernels with the environment JupyterLab gives the kernels of the module's `lab`."""
+    from suite_env import independent_env
+
     from course_lib.core.paths import runtime_dir
     from course_lib.lab.protocol import SOCKET_ENV
-    from course_lib.tools.testing import independent_env
 
     kernels: list[Kernel] = []
     socket = runtime_dir() / f"lab-{lab.process.pid}.sock"

@@ -18,17 +18,23 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path[:0] = [str(HERE), str(HERE.parent / "support"), str(HERE.parent / "browser")]
+TESTS = HERE.parent
+sys.path[:0] = [
+    str(HERE),
+    str(TESTS / "harness"),
+    str(TESTS / "support" / "lab"),
+    str(TESTS / "browser"),
+]
 
 from jupyter_kernels import describe, pid_alive  # noqa: E402
 from lab_server import LabServer  # noqa: E402
 from lab_terminal import RestTerminal  # noqa: E402
+from suite_env import independent_env  # noqa: E402
 
+from course_lib.core.host.signalling import LOG_ENV  # noqa: E402
 from course_lib.core.paths import REPO_ROOT  # noqa: E402
-from course_lib.core.signalling import LOG_ENV  # noqa: E402
 from course_lib.core.waiting import wait_until  # noqa: E402
 from course_lib.processes.ownership import read_process  # noqa: E402
-from course_lib.tools.testing import independent_env  # noqa: E402
 
 PY = sys.executable
 HANG_UP_S = 5.0  # a hung-up job's end, after the lab's: milliseconds, seconds on a busy host

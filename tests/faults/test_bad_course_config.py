@@ -7,9 +7,9 @@ from pathlib import Path
 
 import pytest
 from jupyter_kernels import Kernel
+from suite_env import independent_env
 
 from course_lib.core.paths import CONFIG_DIR, CONFIG_DIR_ENV
-from course_lib.tools.testing import independent_env
 
 pytestmark = [pytest.mark.ros]
 

@@ -18,9 +18,9 @@ import psutil
 import pytest
 from jupyter_kernels import describe, wait_gone
 from lab_terminal import RestTerminal, rest
+from suite_env import independent_env
 
 from course_lib.core.paths import REPO_ROOT
-from course_lib.tools.testing import independent_env
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "browser"))
 from lab_server import LabServer

@@ -96,7 +96,7 @@ def test_the_lab_stores_no_live_output(lab: LabServer) -> None:
 
     import nbformat
 
-    from course_lib.core.live_outputs import PLACEHOLDERS
+    from course_lib.core.files.live_outputs import PLACEHOLDERS
     from course_lib.core.paths import REPO_ROOT
 
     notebook = nbformat.v4.new_notebook()

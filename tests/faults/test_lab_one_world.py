@@ -108,7 +108,7 @@ def test_a_lessons_driver_stops_the_other_lessons_drivers_and_names_the_learners
 def _open_sockets() -> int:
     import os
 
-    from course_lib.core.procfs import fd_targets
+    from course_lib.core.host.procfs import fd_targets
 
     return sum(target.startswith("socket:") for target in fd_targets(os.getpid()))
 

@@ -16,8 +16,7 @@ from pathlib import Path
 
 import pytest
 from pid_namespace import namespace_prefix
-
-from course_lib.tools.testing import independent_env
+from suite_env import independent_env
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 

@@ -17,8 +17,7 @@ import tempfile
 
 import pytest
 from pid_namespace import namespace_prefix
-
-from course_lib.tools.testing import independent_env
+from suite_env import independent_env
 
 pytestmark = [pytest.mark.slow]
 

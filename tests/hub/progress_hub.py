@@ -24,7 +24,7 @@ from urllib.parse import quote
 import requests
 from hub_sign_in import sign_in
 
-from course_lib.core.ports import free_port
+from course_lib.core.host.ports import free_port
 from course_lib.hub.progress import (
     PROGRESS_HOLDER_ENV,
     PROGRESS_URL_ENV,

@@ -25,14 +25,14 @@ from pathlib import Path
 
 import pytest
 import requests
+from suite_env import TEST_ENV, independent_env
 
+from course_lib.core.host.ports import free_port
+from course_lib.core.host.procfs import environ
 from course_lib.core.paths import REPO_ROOT, venv_bin_dir
-from course_lib.core.ports import free_port
-from course_lib.core.procfs import environ
 from course_lib.core.waiting import wait_until
 from course_lib.hub.singleuser import DEFAULT_URL, LEARNER_FOLDER
 from course_lib.processes.children import ChildProcess, spawn
-from course_lib.tools.testing import TEST_ENV, independent_env
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 

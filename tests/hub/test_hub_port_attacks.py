@@ -27,7 +27,7 @@ from hub_accounts import as_account, lab_terminal, sign_in
 from hub_sign_in import sign_in as sign_in_form
 from lab_terminal import RestTerminal
 
-from course_lib.core.procfs import cmdline, pids
+from course_lib.core.host.procfs import cmdline, pids
 from course_lib.core.waiting import wait_until
 
 pytestmark = [pytest.mark.slow, pytest.mark.learners_env]

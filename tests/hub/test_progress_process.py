@@ -21,8 +21,8 @@ import pytest
 import requests
 from class_hub import hub_environment, start_prebuild
 
+from course_lib.core.host.procfs import pid_alive
 from course_lib.core.paths import REPO_ROOT
-from course_lib.core.procfs import pid_alive
 from course_lib.core.waiting import wait_until
 from course_lib.hub.launcher import NO_WALL_ENV, _plan
 from course_lib.hub.progress import SERVICE_NAME, service_environment

@@ -18,12 +18,12 @@ from urllib.parse import quote
 
 import pytest
 import requests
+from suite_env import independent_env
 
-from course_lib.core.ports import free_port
+from course_lib.core.host.ports import free_port
 from course_lib.core.waiting import wait_until
 from course_lib.hub.provision.proxy import proxy_argv
 from course_lib.processes.children import spawn
-from course_lib.tools.testing import independent_env
 
 pytestmark = [
     pytest.mark.slow,

@@ -13,7 +13,7 @@ from collections.abc import Callable
 
 import pytest
 
-from course_lib.core.ports import free_port
+from course_lib.core.host.ports import free_port
 from course_lib.hub.guard.wall import Relay, enter_own_network, wall_problem
 
 pytestmark = pytest.mark.slow

@@ -18,7 +18,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 
 from ...core.errors import CourseError
-from ...core.procfs import cmdline
+from ...core.host.procfs import cmdline
 from .root_folder import root_only_folder
 
 __all__ = ["LOCKS_FOLDER", "LOCK_TIMEOUT_S", "LockWaitError", "hub_lock", "lock_holders"]

@@ -32,9 +32,9 @@ import os
 import socket
 import struct
 import threading
-from collections.abc import Callable
+from collections.abc import Awaitable, Callable
 
-from ...core.ports import held_only_by
+from ...core.host.ports import held_only_by
 
 __all__ = [
     "Relay",
@@ -99,9 +99,9 @@ def wall_problem() -> str | None:
         os._exit(0)
     os.close(write)
     with os.fdopen(read, "rb") as pipe:
-        message = pipe.read().decode(errors="replace")
+        reported = pipe.read().decode(errors="replace")
     os.waitpid(pid, 0)
-    return message or None
+    return reported or None
 
 
 def listen_in_network_of(pid: int, port: int) -> socket.socket:
@@ -166,7 +166,9 @@ class Relay:
             handler = self._handler(port)
             self._servers.append(await asyncio.start_server(handler, sock=listener))
 
-    def _handler(self, port: int) -> Callable[..., object]:
+    def _handler(
+        self, port: int
+    ) -> Callable[[asyncio.StreamReader, asyncio.StreamWriter], Awaitable[None]]:
         async def carry(inner_r: asyncio.StreamReader, inner_w: asyncio.StreamWriter) -> None:
             try:
                 outer_r, outer_w = await asyncio.open_connection("127.0.0.1", port)

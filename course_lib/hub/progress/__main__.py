@@ -50,7 +50,7 @@ def _arguments(argv: list[str] | None) -> argparse.Namespace:
 async def _serve(db: Path, listen_fd: int | None = None) -> None:
     from jupyterhub.services.auth import HubOAuth
 
-    from ...lessons.lesson import TITLES
+    from ...lessons.catalogue import TITLES
     from .app import MAX_READ_BYTES, ServiceContext, make_app
     from .store import ProgressStore
 

@@ -27,7 +27,7 @@ class HubUser:
 
 
 async def _page(api_url: str, token: str, offset: int) -> dict:
-    url = url_concat(api_url.rstrip("/") + "/users", {"offset": offset, "limit": _PAGE})
+    url = url_concat(api_url.rstrip("/") + "/users", {"offset": str(offset), "limit": str(_PAGE)})
     headers = {"Authorization": f"token {token}", "Accept": _PAGINATED}
     try:
         response = await AsyncHTTPClient().fetch(url, headers=headers, request_timeout=10)

@@ -8,7 +8,7 @@ import subprocess
 from pathlib import Path
 
 from ...core.errors import CourseError
-from ...core.procfs import start_time
+from ...core.host.procfs import start_time
 from ..guard.locks import hub_lock
 
 __all__ = [

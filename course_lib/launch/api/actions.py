@@ -10,6 +10,7 @@ from ..core.description import AnyLaunchDescriptionSource, LaunchDescriptionSour
 from ..core.entity import Action
 from ..core.launch_argument import DeclareLaunchArgument
 from ..core.substitution import as_text, normalize_to_list_of_substitutions, perform_substitutions
+from .exposure import expose, expose_action
 
 __all__ = [
     "DeclareLaunchArgument",
@@ -23,8 +24,15 @@ __all__ = [
 ]
 
 
+@expose_action("let")
 class SetLaunchConfiguration(Action):
     """Set a launch configuration (XML/YAML `let`)."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<let name= value=/>`."""
+        name, value = parser.subs(entity, "name", False), parser.subs(entity, "value", False)
+        return cls(name, value, **parser.condition(entity))
 
     def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -37,8 +45,21 @@ class SetLaunchConfiguration(Action):
         )
 
 
+@expose_action("include")
 class IncludeLaunchDescription(Action):
     """Include another launch file, passing it launch arguments."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<include file=>` with `<arg name= value=/>` children."""
+        args = entity.get_attr("arg", data_type=list, optional=True) or []
+        return cls(
+            AnyLaunchDescriptionSource(parser.subs(entity, "file", optional=False)),
+            launch_arguments=[
+                (parser.subs(a, "name", False), parser.subs(a, "value", False)) for a in args
+            ],
+            **parser.condition(entity),
+        )
 
     def __init__(
         self,
@@ -117,8 +138,18 @@ class _Scope(Action):
             context.environment.update(context.initial_environment)
 
 
+@expose_action("group")
 class GroupAction(Action):
     """Group actions, scoping the launch configurations they set."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<group scoped=>` with its actions as children."""
+        return cls(
+            [parser.parse_action(c) for c in entity.children if c.type_name != "env"],
+            scoped=entity.get_attr("scoped", data_type=bool, optional=True) is not False,
+            **parser.condition(entity),
+        )
 
     def __init__(
         self,
@@ -147,8 +178,14 @@ class GroupAction(Action):
         return [_Scope(True), *sets, *self.actions, _Scope(False)]
 
 
+@expose_action("log")
 class LogInfo(Action):
     """Log a message as `[INFO] [launch.user]: ...`."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<log message=/>`."""
+        return cls(msg=parser.subs(entity, "message", False), **parser.condition(entity))
 
     def __init__(self, *, msg: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -158,8 +195,18 @@ class LogInfo(Action):
         context.log("launch.user", "INFO", perform_substitutions(context, self.msg))
 
 
+@expose_action("timer")
 class TimerAction(Action):
     """Visit actions after a period (seconds), unless the launch shuts down first."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<timer period=>` with its actions as children."""
+        return cls(
+            period=parser.subs(entity, "period", False),
+            actions=[parser.parse_action(c) for c in entity.children],
+            **parser.condition(entity),
+        )
 
     def __init__(
         self,
@@ -185,6 +232,7 @@ class TimerAction(Action):
         return None
 
 
+@expose("launch.actions")
 class OpaqueFunction(Action):
     """Call a function with the context; it may return more actions."""
 
@@ -205,8 +253,15 @@ class OpaqueFunction(Action):
         return self.function(context, *self.args, **self.kwargs)
 
 
+@expose_action("set_env")
 class SetEnvironmentVariable(Action):
     """Set an environment variable for the processes started after it."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<set_env name= value=/>`."""
+        name, value = parser.subs(entity, "name", False), parser.subs(entity, "value", False)
+        return cls(name, value, **parser.condition(entity))
 
     def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -217,3 +272,17 @@ class SetEnvironmentVariable(Action):
         context.environment[perform_substitutions(context, self.name)] = perform_substitutions(
             context, self.value
         )
+
+
+def _parse_declare_argument(entity: Any, parser: Any) -> DeclareLaunchArgument:
+    """`<arg name= default= description=/>` (DeclareLaunchArgument lives in launch/core)."""
+    default = entity.get_attr("default", optional=True)
+    return DeclareLaunchArgument(
+        str(entity.get_attr("name")),
+        default_value=None if default is None else parser.parse_substitution(str(default)),
+        description=entity.get_attr("description", optional=True),
+        **parser.condition(entity),
+    )
+
+
+expose_action("arg", parse=_parse_declare_argument)(DeclareLaunchArgument)

@@ -12,6 +12,7 @@ from ..core.substitution import (
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
+from .exposure import expose
 
 __all__ = [
     "IfCondition",
@@ -26,6 +27,7 @@ VALID_TRUE = ("true", "1")
 VALID_FALSE = ("false", "0")
 
 
+@expose("launch.conditions")
 class InvalidConditionExpressionError(ValueError):
     """A condition's text is none of true, 1, false, 0."""
 
@@ -37,6 +39,7 @@ class InvalidConditionExpressionError(ValueError):
         )
 
 
+@expose("launch.conditions")
 def evaluate_condition_expression(context: Any, expression: list[Substitution]) -> bool:
     """Return the truth of a condition's text (`true`/`1`, `false`/`0`, any case)."""
     text = perform_substitutions(context, expression).strip().lower()
@@ -47,6 +50,7 @@ def evaluate_condition_expression(context: Any, expression: list[Substitution]) 
     raise InvalidConditionExpressionError(text, expression)
 
 
+@expose("launch.conditions")
 class IfCondition(Condition):
     """Run the action when the expression is true."""
 
@@ -55,6 +59,7 @@ class IfCondition(Condition):
         super().__init__(lambda context: evaluate_condition_expression(context, expression))
 
 
+@expose("launch.conditions")
 class UnlessCondition(Condition):
     """Run the action when the expression is false."""
 
@@ -87,6 +92,7 @@ class _ConfigurationCondition(Condition):
         return context.launch_configurations[self.name] == expected
 
 
+@expose("launch.conditions")
 class LaunchConfigurationEquals(_ConfigurationCondition):
     """True when a launch configuration equals a value (None: when it is not set)."""
 
@@ -94,6 +100,7 @@ class LaunchConfigurationEquals(_ConfigurationCondition):
         super().__init__(launch_configuration_name, expected_value, negate=False)
 
 
+@expose("launch.conditions")
 class LaunchConfigurationNotEquals(_ConfigurationCondition):
     """True when a launch configuration differs from a value (None: when it is set)."""
 

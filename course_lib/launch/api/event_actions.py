@@ -8,10 +8,12 @@ from ..core.entity import Action
 from ..core.event import BaseEventHandler, Event
 from ..core.events import ProcessExited
 from ..core.events import Shutdown as ShutdownEvent
+from .exposure import expose, expose_action
 
 __all__ = ["EmitEvent", "RegisterEventHandler", "Shutdown", "UnregisterEventHandler"]
 
 
+@expose("launch.actions")
 class EmitEvent(Action):
     """Emit an event (e.g. `launch.events.Shutdown(reason=...)`)."""
 
@@ -25,6 +27,7 @@ class EmitEvent(Action):
         context.emit_event_sync(self.event)
 
 
+@expose("launch.actions")
 class RegisterEventHandler(Action):
     """Register an event handler (`OnProcessStart(...)`, `OnShutdown(...)`, ...)."""
 
@@ -39,6 +42,7 @@ class RegisterEventHandler(Action):
         return list(self.event_handler.describe()[1])
 
 
+@expose("launch.actions")
 class UnregisterEventHandler(Action):
     """Unregister an event handler registered before."""
 
@@ -50,8 +54,14 @@ class UnregisterEventHandler(Action):
         context.unregister_event_handler(self.event_handler)
 
 
+@expose_action("shutdown")
 class Shutdown(EmitEvent):
     """Shut the whole launch down (saying so when a required process has exited)."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<shutdown reason=/>`."""
+        return cls(reason=entity.get_attr("reason", optional=True) or "reason not given")
 
     def __init__(self, *, reason: Any = "reason not given", **kwargs: Any) -> None:
         super().__init__(event=ShutdownEvent(reason=reason), **kwargs)

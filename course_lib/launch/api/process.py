@@ -12,6 +12,7 @@ from ..core.event import BaseEventHandler
 from ..core.event_handlers import OnProcessExit, OnShutdown
 from ..core.events import SignalProcess
 from ..core.substitution import normalize_to_list_of_substitutions, perform_substitutions
+from .exposure import expose_action
 from .substitutions import LaunchConfiguration
 
 __all__ = ["ExecuteProcess", "ProcessSpec"]
@@ -52,8 +53,18 @@ def _truthy(text: str) -> bool:
     raise ValueError(f"Unknown boolean value '{text}' in condition expression")
 
 
+@expose_action("executable")
 class ExecuteProcess(Action):
     """Run a process; its output goes to the screen and/or the launch log."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<executable cmd= name= ...>` (the process attributes `<node>` shares)."""
+        return cls(
+            cmd=parser.command_line(entity.get_attr("cmd")),
+            name=parser.subs(entity, "name"),
+            **parser.process_kwargs(entity),
+        )
 
     def __init__(
         self,
@@ -153,6 +164,7 @@ class ExecuteProcess(Action):
                 perform_substitutions(context, normalize_to_list_of_substitutions(respawn))
             )
         cwd = None if self.cwd is None else perform_substitutions(context, self.cwd)
+        sigterm_timeout, sigkill_timeout = self._timeouts(context)
         return ProcessSpec(
             name=f"{base}-{context.process_counter}",
             cmd=cmd,
@@ -164,16 +176,15 @@ class ExecuteProcess(Action):
             respawn=respawn,
             respawn_delay=self.respawn_delay,
             respawn_max_retries=self.respawn_max_retries,
-            **self._timeouts(context),
+            sigterm_timeout=sigterm_timeout,
+            sigkill_timeout=sigkill_timeout,
         )
 
-    def _timeouts(self, context: Any) -> dict[str, str]:
+    def _timeouts(self, context: Any) -> tuple[str, str]:
+        """Return the SIGTERM and SIGKILL timeouts: the second counts from SIGINT too."""
         sigterm = perform_substitutions(context, self.sigterm_timeout)
         sigkill = perform_substitutions(context, self.sigkill_timeout)
-        return {
-            "sigterm_timeout": sigterm,
-            "sigkill_timeout": str(float(sigterm) + float(sigkill)),
-        }
+        return sigterm, str(float(sigterm) + float(sigkill))
 
     def execute(self, context: Any) -> None:
         self.spec = self.prepare(context)

@@ -1,4 +1,8 @@
-"""The `$(name arg ...)` substitution language of XML and YAML launch files."""
+"""The `$(name arg ...)` substitution language of XML and YAML launch files.
+
+Each `$(name ...)` is the substitution class that exposes it (`@expose_substitution("name")`
+in substitutions.py and logic_substitutions.py), built by the class's `parse`.
+"""
 
 from __future__ import annotations
 
@@ -8,136 +12,10 @@ from typing import Any
 from ..core.loading import CourseUnavailableError
 from ..core.real_names import REAL_FRONTEND_SUBSTITUTIONS
 from ..core.substitution import Substitution, TextSubstitution
-from .logic_substitutions import (
-    AllSubstitution,
-    AndSubstitution,
-    AnySubstitution,
-    IfElseSubstitution,
-    NotSubstitution,
-    OrSubstitution,
-)
-from .substitutions import (
-    Command,
-    EnvironmentVariable,
-    EqualsSubstitution,
-    ExecutableInPackage,
-    FindExecutable,
-    FindPackagePrefix,
-    FindPackageShare,
-    LaunchConfiguration,
-    NotEqualsSubstitution,
-    PythonExpression,
-    ThisLaunchFile,
-    ThisLaunchFileDir,
-)
+from . import logic_substitutions, substitutions  # noqa: F401  (they expose their `$(...)`)
+from .exposure import Args, frontend_substitutions
 
 __all__ = ["parse_if_substitutions", "parse_substitution"]
-
-Args = list[list[Substitution]]
-
-
-def _count(name: str, args: Args, low: int, high: int) -> None:
-    if not low <= len(args) <= high:
-        many = (
-            f"{low} or {high} arguments"
-            if low != high
-            else (f"{low} argument" if low == 1 else f"{low} arguments")
-        )
-        raise TypeError(f"{name} substitution expects {many}")
-
-
-def _var(args: Args) -> Substitution:
-    _count("var", args, 1, 2)
-    return LaunchConfiguration(args[0], default=args[1] if len(args) > 1 else None)
-
-
-def _env(args: Args) -> Substitution:
-    _count("env", args, 1, 2)
-    return EnvironmentVariable(args[0], default_value=args[1] if len(args) > 1 else None)
-
-
-def _optenv(args: Args) -> Substitution:
-    _count("optenv", args, 1, 2)
-    return EnvironmentVariable(args[0], default_value=args[1] if len(args) > 1 else "")
-
-
-def _package(cls: type) -> Callable[[Args], Substitution]:
-    def make(args: Args) -> Substitution:
-        if len(args) != 1:
-            raise AttributeError("find package substitutions expect 1 argument")
-        return cls(args[0])
-
-    return make
-
-
-def _exec_in_pkg(args: Args) -> Substitution:
-    if len(args) != 2:
-        raise AttributeError("exec-in-package substitution expects 2 arguments")
-    return ExecutableInPackage(executable=args[0], package=args[1])
-
-
-def _no_args(cls: type, name: str) -> Callable[[Args], Substitution]:
-    def make(args: Args) -> Substitution:
-        if args:
-            raise TypeError(f"{name} substitution doesn't expect arguments")
-        return cls()
-
-    return make
-
-
-def _eval(args: Args) -> Substitution:
-    _count("eval", args, 1, 2)
-    return PythonExpression(args[0])
-
-
-def _command(args: Args) -> Substitution:
-    if not 1 <= len(args) <= 2:
-        raise ValueError("command substitution expects 1 or 2 arguments")
-    return Command(args[0], on_stderr=args[1] if len(args) > 1 else "fail")
-
-
-def _find_exec(args: Args) -> Substitution:
-    if len(args) != 1:
-        raise AttributeError("find-exec substitution expects 1 argument")
-    return FindExecutable(name=args[0])
-
-
-def _fixed(cls: type, name: str, count: int) -> Callable[[Args], Substitution]:
-    def make(args: Args) -> Substitution:
-        if len(args) != count:
-            raise TypeError(f"{name} substitution expects {count} argument{'s' * (count > 1)}")
-        return cls(*args)
-
-    return make
-
-
-def _if(args: Args) -> Substitution:
-    if not 2 <= len(args) <= 3:
-        raise TypeError("if substitution expects from 2 or 3 arguments")
-    return IfElseSubstitution(*args)
-
-
-_MAKERS: dict[str, Callable[[Args], Substitution]] = {
-    "var": _var,
-    "env": _env,
-    "optenv": _optenv,
-    "find-pkg-share": _package(FindPackageShare),
-    "find-pkg-prefix": _package(FindPackagePrefix),
-    "exec-in-pkg": _exec_in_pkg,
-    "dirname": _no_args(ThisLaunchFileDir, "dirname"),
-    "filename": _no_args(ThisLaunchFile, "filename"),
-    "eval": _eval,
-    "command": _command,
-    "find-exec": _find_exec,
-    "not": _fixed(NotSubstitution, "not", 1),
-    "and": _fixed(AndSubstitution, "and", 2),
-    "or": _fixed(OrSubstitution, "and", 2),  # launch's own message says "and" here
-    "any": lambda args: AnySubstitution(*args),
-    "all": lambda args: AllSubstitution(*args),
-    "if": _if,
-    "equals": _fixed(EqualsSubstitution, "and", 2),  # (sic, as launch says)
-    "not-equals": _fixed(NotEqualsSubstitution, "not-equals", 2),
-}
 
 
 def _fragment(text: str, i: int, stop: Callable[[str], bool]) -> tuple[list[Substitution], int]:
@@ -177,19 +55,20 @@ def _substitution(text: str, i: int) -> tuple[Substitution, int]:
             break
         if text[i] in "'\"":
             quote = text[i]
-            arg, i = _fragment(text, i + 1, lambda c, q=quote: c == q)
+            arg, i = _fragment(text, i + 1, quote.__eq__)
             i += 1
         else:
             arg, i = _fragment(text, i, lambda c: c.isspace() or c == ")")
         args.append(arg)
-    if name not in _MAKERS:
+    makers = frontend_substitutions()
+    if name not in makers:
         if name in REAL_FRONTEND_SUBSTITUTIONS:
             raise CourseUnavailableError(
                 f"'$({name} ...)' is not available in this course; it has: "
-                f"{', '.join(sorted(_MAKERS))}"
+                f"{', '.join(sorted(makers))}"
             )
         raise RuntimeError(f"Unknown substitution: {name}")
-    return _MAKERS[name](args), i + 1
+    return makers[name](args), i + 1
 
 
 def parse_substitution(text: str) -> list[Substitution]:

@@ -15,23 +15,21 @@ from ..core.substitution import (
     Substitution,
     SubstitutionFailure,
     TextSubstitution,
-    as_text,
     describe_all,
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
+from .exposure import Args, expect_arguments, expose, expose_substitution
 
 __all__ = [
     "Command",
     "EnvironmentVariable",
-    "EqualsSubstitution",
     "ExecutableInPackage",
     "FindExecutable",
     "FindPackagePrefix",
     "FindPackageShare",
     "LaunchConfiguration",
     "LocalSubstitution",
-    "NotEqualsSubstitution",
     "PathJoinSubstitution",
     "PythonExpression",
     "Substitution",
@@ -44,6 +42,7 @@ __all__ = [
 ]
 
 
+@expose("launch.substitutions")
 class LocalSubstitution(Substitution):
     """A value from the context's locals, e.g. `ros_specific_arguments['name']`."""
 
@@ -59,8 +58,15 @@ class LocalSubstitution(Substitution):
         return self.description or f"LocalVar('{self.expression}')"
 
 
+@expose_substitution("var")
 class LaunchConfiguration(Substitution):
     """The value of a launch configuration (a launch argument or `let`)."""
+
+    @classmethod
+    def parse(cls, name: str, args: Args) -> Substitution:
+        """`$(var name [default])`."""
+        expect_arguments(name, args, 1, 2)
+        return cls(args[0], default=args[1] if len(args) > 1 else None)
 
     def __init__(self, variable_name: Any, *, default: Any = None) -> None:
         self.variable_name = normalize_to_list_of_substitutions(variable_name)
@@ -84,8 +90,16 @@ class LaunchConfiguration(Substitution):
         return f"LaunchConfig({describe_all(self.variable_name)})"
 
 
+@expose_substitution("env", "optenv")
 class EnvironmentVariable(Substitution):
     """The value of an environment variable of the launch."""
+
+    @classmethod
+    def parse(cls, name: str, args: Args) -> Substitution:
+        """`$(env NAME [default])`; `$(optenv NAME [default])` defaults to ''."""
+        expect_arguments(name, args, 1, 2)
+        default = args[1] if len(args) > 1 else ("" if name == "optenv" else None)
+        return cls(args[0], default_value=default)
 
     def __init__(self, name: Any, *, default_value: Any = None) -> None:
         self.name = normalize_to_list_of_substitutions(name)
@@ -106,6 +120,7 @@ class EnvironmentVariable(Substitution):
         return f"EnvVar({describe_all(self.name)})"
 
 
+@expose("launch.substitutions")
 class PathJoinSubstitution(Substitution):
     """Join path parts with the OS separator."""
 
@@ -126,8 +141,15 @@ def _note_code_run(context: Any, what: str) -> None:
         ran.append(what)
 
 
+@expose_substitution("eval")
 class PythonExpression(Substitution):
     """Evaluate a Python expression (with `math` available), as real launch does."""
+
+    @classmethod
+    def parse(cls, name: str, args: Args) -> Substitution:
+        """`$(eval expression)` (a second argument, the modules, is accepted and unused)."""
+        expect_arguments(name, args, 1, 2)
+        return cls(args[0])
 
     def __init__(self, expression: Any, python_modules: Any = ("math",)) -> None:
         self.expression = normalize_to_list_of_substitutions(expression)
@@ -148,8 +170,20 @@ class PythonExpression(Substitution):
         return f"PythonExpr({describe_all(self.expression)})"
 
 
+def _without_arguments(cls: type[Substitution], name: str, args: Args) -> Substitution:
+    if args:
+        raise TypeError(f"{name} substitution doesn't expect arguments")
+    return cls()
+
+
+@expose_substitution("dirname")
 class ThisLaunchFileDir(Substitution):
     """The folder of the launch file being evaluated."""
+
+    @classmethod
+    def parse(cls, name: str, args: Args) -> Substitution:
+        """`$(dirname)`."""
+        return _without_arguments(cls, name, args)
 
     def perform(self, context: Any) -> str:
         if "current_launch_file_directory" not in context.locals:
@@ -162,8 +196,14 @@ class ThisLaunchFileDir(Substitution):
         return "ThisLaunchFileDir()"
 
 
+@expose_substitution("filename")
 class ThisLaunchFile(Substitution):
     """The path of the launch file being evaluated."""
+
+    @classmethod
+    def parse(cls, name: str, args: Args) -> Substitution:
+        """`$(filename)`."""
+        return _without_arguments(cls, name, args)
 
     def perform(self, context: Any) -> str:
         if "current_launch_file_path" not in context.locals:
@@ -174,8 +214,16 @@ class ThisLaunchFile(Substitution):
         return "ThisLaunchFile()"
 
 
+@expose_substitution("find-pkg-prefix", module="launch_ros.substitutions")
 class FindPackagePrefix(Substitution):
     """The install prefix of a package, from the ament index."""
+
+    @classmethod
+    def parse(cls, name: str, args: Args) -> Substitution:
+        """`$(find-pkg-prefix package)` (and `find-pkg-share`)."""
+        if len(args) != 1:
+            raise AttributeError("find package substitutions expect 1 argument")
+        return cls(args[0])
 
     def __init__(self, package: Any) -> None:
         self.package = normalize_to_list_of_substitutions(package)
@@ -193,6 +241,7 @@ class FindPackagePrefix(Substitution):
         return f"{type(self).__name__}(pkg={describe_all(self.package)})"
 
 
+@expose_substitution("find-pkg-share", module="launch_ros.substitutions")
 class FindPackageShare(FindPackagePrefix):
     """The share folder of a package, from the ament index."""
 
@@ -202,8 +251,16 @@ class FindPackageShare(FindPackagePrefix):
         return get_package_share_directory(package)
 
 
+@expose_substitution("exec-in-pkg", module="launch_ros.substitutions")
 class ExecutableInPackage(FindPackagePrefix):
     """The path of an executable in `<prefix>/lib/<package>`."""
+
+    @classmethod
+    def parse(cls, name: str, args: Args) -> Substitution:
+        """`$(exec-in-pkg executable package)`."""
+        if len(args) != 2:
+            raise AttributeError("exec-in-package substitution expects 2 arguments")
+        return cls(executable=args[0], package=args[1])
 
     def __init__(self, executable: Any, package: Any) -> None:
         super().__init__(package)
@@ -230,8 +287,15 @@ class ExecutableInPackage(FindPackagePrefix):
         return f"ExecInPkg(pkg={describe_all(self.package)}, exec={describe_all(self.executable)})"
 
 
+@expose_substitution("find-exec")
 class FindExecutable(Substitution):
     """The full path of an executable found on the PATH."""
+
+    @classmethod
+    def parse(cls, name: str, args: Args) -> Substitution:
+        """`$(find-exec name)`."""
+        expect_arguments(name, args, 1, error=AttributeError)
+        return cls(name=args[0])
 
     def __init__(self, *, name: Any) -> None:
         self.name = normalize_to_list_of_substitutions(name)
@@ -250,8 +314,15 @@ class FindExecutable(Substitution):
 _ON_STDERR = ("fail", "ignore", "warn", "capture")
 
 
+@expose_substitution("command")
 class Command(Substitution):
     """The standard output of a command (split like a shell would, without a shell)."""
+
+    @classmethod
+    def parse(cls, name: str, args: Args) -> Substitution:
+        """`$(command 'cmd args' [on_stderr])`."""
+        expect_arguments(name, args, 1, 2, error=ValueError)
+        return cls(args[0], on_stderr=args[1] if len(args) > 1 else "fail")
 
     def __init__(self, command: Any, *, on_stderr: Any = "fail") -> None:
         self.command = normalize_to_list_of_substitutions(command)
@@ -290,54 +361,3 @@ class Command(Substitution):
 
     def describe(self) -> str:
         return f"Command({describe_all(self.command)})"
-
-
-def _is_bool(text: str) -> bool:
-    return text.lower() in ("true", "false", "1", "0")
-
-
-def _is_float(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
-
-
-class EqualsSubstitution(Substitution):
-    """`true` when both sides are equal (as booleans, as numbers, else as text)."""
-
-    def __init__(self, left: Any, right: Any) -> None:
-        self.left = normalize_to_list_of_substitutions(_as_text(left))
-        self.right = normalize_to_list_of_substitutions(_as_text(right))
-
-    def _equal(self, context: Any) -> bool:
-        left = perform_substitutions(context, self.left)
-        right = perform_substitutions(context, self.right)
-        if _is_bool(left) and _is_bool(right):
-            return (left.lower() in ("true", "1")) == (right.lower() in ("true", "1"))
-        if _is_float(left) and _is_float(right):
-            return math.isclose(float(left), float(right))
-        return left == right
-
-    def perform(self, context: Any) -> str:
-        return str(self._equal(context)).lower()
-
-    def describe(self) -> str:
-        return f"EqualsSubstitution({describe_all(self.left)} {describe_all(self.right)})"
-
-
-class NotEqualsSubstitution(EqualsSubstitution):
-    """`true` when the sides differ."""
-
-    def perform(self, context: Any) -> str:
-        return str(not self._equal(context)).lower()
-
-    def describe(self) -> str:
-        return f"NotEqualsSubstitution({describe_all(self.left)} {describe_all(self.right)})"
-
-
-def _as_text(value: Any) -> Any:
-    if value is None:
-        return ""
-    return str(value).lower() if isinstance(value, bool) else as_text(value)

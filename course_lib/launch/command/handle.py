@@ -12,7 +12,7 @@ import sys
 from collections.abc import Callable
 from typing import Any
 
-from ...core.signalling import send
+from ...core.host.signalling import send
 from ...processes.children import ChildProcess, OutputLine
 
 __all__ = ["LaunchHandle", "launch"]

@@ -1,4 +1,8 @@
-"""XML and YAML launch files: read entities, then build the same actions Python files use."""
+"""XML and YAML launch files: read entities, then build the same actions Python files use.
+
+A tag is read by the `parse(entity, parser)` of the action class that exposes it
+(`@expose_action("tag")`, launch/api/exposure.py); `PARSER` is what they read entities with.
+"""
 
 from __future__ import annotations
 
@@ -7,13 +11,13 @@ import xml.etree.ElementTree as ET
 from collections.abc import Callable
 from typing import Any
 
-from ...core.bounded_yaml import safe_load_bounded
-from ..api import actions as la
+from ...core.files.bounded_yaml import safe_load_bounded
+from ..api import actions, event_actions, process  # noqa: F401  (they expose their tags)
 from ..api.conditions import IfCondition, UnlessCondition
 from ..api.event_actions import Shutdown
-from ..api.process import ExecuteProcess
+from ..api.exposure import frontend_actions
 from ..api.substitution_syntax import parse_if_substitutions, parse_substitution
-from ..core.description import AnyLaunchDescriptionSource, LaunchDescription
+from ..core.description import LaunchDescription
 from ..core.loading import (
     CourseUnavailableError,
     InvalidFrontendLaunchFileError,
@@ -22,10 +26,9 @@ from ..core.loading import (
 )
 from ..core.real_names import REAL_FRONTEND_TAGS
 from ..core.substitution import TextSubstitution
-from ..ros.node import Node, PushRosNamespace, SetParameter, SetParametersFromFile, SetRemap
-from ..ros.parameters import ParameterFile, ParameterValue
+from ..ros import node  # noqa: F401  (launch_ros's actions expose their tags)
 
-__all__ = ["load_frontend_file", "parse_action", "parse_substitution"]
+__all__ = ["PARSER", "load_frontend_file", "parse_action", "parse_substitution"]
 
 
 def _coerce(value: str) -> Any:
@@ -148,25 +151,6 @@ def _condition(entity: Entity) -> dict[str, Any]:
     return {}
 
 
-def _params(entity: Entity) -> list[Any]:
-    result: list[Any] = []
-    for param in entity.get_attr("param", data_type=list, optional=True) or []:
-        source = param.get_attr("from", optional=True)
-        name = param.get_attr("name", optional=True)
-        if source is not None and name is not None:
-            raise RuntimeError("name and from attributes are mutually exclusive")
-        if source is not None:
-            result.append(ParameterFile(parse_substitution(str(source))))
-        elif name is not None:
-            value = param.get_attr("value", data_type=None, optional=True)
-            if value is None:
-                raise RuntimeError("either a value attribute or nested params are needed")
-            result.append({name: ParameterValue(parse_if_substitutions(value))})
-        else:
-            raise ValueError("param Entity should have name or from attribute")
-    return result
-
-
 def _process_kwargs(entity: Entity) -> dict[str, Any]:
     kwargs: dict[str, Any] = _condition(entity)
     for key, attr in (
@@ -233,101 +217,36 @@ def _cmdline(text: Any) -> list[Any]:
     return args
 
 
-def _node(entity: Entity) -> Node:
-    kwargs = _process_kwargs(entity)
-    kwargs["executable"] = _subs(entity, "exec", optional=False)
-    for key, attr in (
-        ("package", "pkg"),
-        ("name", "name"),
-        ("namespace", "namespace"),
-        ("exec_name", "exec_name"),
-    ):
-        value = _subs(entity, attr)
-        if value is not None:
-            kwargs[key] = value
-    for key, attr in (("arguments", "args"), ("ros_arguments", "ros_args")):
-        value = entity.get_attr(attr, optional=True)
-        if value is not None:
-            kwargs[key] = _cmdline(value)
-    remaps = entity.get_attr("remap", data_type=list, optional=True) or []
-    if remaps:
-        kwargs["remappings"] = [(_subs(r, "from", False), _subs(r, "to", False)) for r in remaps]
-    params = _params(entity)
-    if params:
-        kwargs["parameters"] = params
-    return Node(**kwargs)
+class _Parser:
+    """What an exposed action's `parse(entity, parser)` reads its entity with."""
+
+    subs = staticmethod(_subs)
+    condition = staticmethod(_condition)
+    process_kwargs = staticmethod(_process_kwargs)
+    command_line = staticmethod(_cmdline)
+    parse_substitution = staticmethod(parse_substitution)
+    parse_if_substitutions = staticmethod(parse_if_substitutions)
+
+    @staticmethod
+    def parse_action(entity: Entity) -> Any:
+        """Build the action of a nested entity (a group's, a timer's)."""
+        return parse_action(entity)
 
 
-def _include(entity: Entity) -> la.IncludeLaunchDescription:
-    args = entity.get_attr("arg", data_type=list, optional=True) or []
-    return la.IncludeLaunchDescription(
-        AnyLaunchDescriptionSource(_subs(entity, "file", optional=False)),
-        launch_arguments=[(_subs(a, "name", False), _subs(a, "value", False)) for a in args],
-        **_condition(entity),
-    )
-
-
-def _arg(entity: Entity) -> la.DeclareLaunchArgument:
-    default = entity.get_attr("default", optional=True)
-    return la.DeclareLaunchArgument(
-        str(entity.get_attr("name")),
-        default_value=None if default is None else parse_substitution(str(default)),
-        description=entity.get_attr("description", optional=True),
-        **_condition(entity),
-    )
-
-
-_PARSERS: dict[str, Callable[[Entity], Any]] = {
-    "node": _node,
-    "include": _include,
-    "arg": _arg,
-    "let": lambda e: la.SetLaunchConfiguration(
-        _subs(e, "name", False), _subs(e, "value", False), **_condition(e)
-    ),
-    "executable": lambda e: ExecuteProcess(
-        cmd=_cmdline(e.get_attr("cmd")), name=_subs(e, "name"), **_process_kwargs(e)
-    ),
-    "group": lambda e: la.GroupAction(
-        [parse_action(c) for c in e.children if c.type_name != "env"],
-        scoped=e.get_attr("scoped", data_type=bool, optional=True) is not False,
-        **_condition(e),
-    ),
-    "timer": lambda e: la.TimerAction(
-        period=_subs(e, "period", False),
-        actions=[parse_action(c) for c in e.children],
-        **_condition(e),
-    ),
-    "log": lambda e: la.LogInfo(msg=_subs(e, "message", False), **_condition(e)),
-    "set_env": lambda e: la.SetEnvironmentVariable(
-        _subs(e, "name", False), _subs(e, "value", False), **_condition(e)
-    ),
-    "push-ros-namespace": lambda e: PushRosNamespace(_subs(e, "namespace", False)),
-    "push_ros_namespace": lambda e: PushRosNamespace(_subs(e, "namespace", False)),
-    "set_parameter": lambda e: SetParameter(
-        _subs(e, "name", False), _subs(e, "value", False), **_condition(e)
-    ),
-    "set_parameters_from_file": lambda e: SetParametersFromFile(
-        _subs(e, "filename", False), **_condition(e)
-    ),
-    "set_remap": lambda e: SetRemap(
-        _subs(e, "from", False), _subs(e, "to", False), **_condition(e)
-    ),
-    "shutdown": lambda e: Shutdown(
-        reason=e.get_attr("reason", optional=True) or "reason not given"
-    ),
-}
+PARSER = _Parser()
 
 
 def parse_action(entity: Entity) -> Any:
-    """Build the action for one entity."""
-    if entity.type_name not in _PARSERS:
+    """Build the action for one entity, with the `parse` of the class exposing its tag."""
+    parsers = frontend_actions()
+    if entity.type_name not in parsers:
         if entity.type_name in REAL_FRONTEND_TAGS:
             raise CourseUnavailableError(
                 f"'{entity.type_name}' (a launch file tag) is not available in this course; "
-                f"it has: {', '.join(sorted(_PARSERS))}"
+                f"it has: {', '.join(sorted(parsers))}"
             )
         raise RuntimeError(f"Unrecognized entity of the type: {entity.type_name}")
-    return _PARSERS[entity.type_name](entity)
+    return parsers[entity.type_name](entity, PARSER)
 
 
 register_frontend(load_frontend_file)

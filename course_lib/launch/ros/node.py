@@ -9,11 +9,20 @@ from typing import Any
 import yaml
 
 from ...core import param_journal
+from ..api.exposure import expose_action
 from ..api.process import ExecuteProcess, ProcessSpec
+from ..api.substitution_syntax import parse_if_substitutions, parse_substitution
 from ..api.substitutions import ExecutableInPackage
 from ..core.entity import Action
 from ..core.substitution import normalize_to_list_of_substitutions, perform_substitutions
-from .parameters import Parameter, evaluate_parameter_dict, normalize_parameters, write_params_file
+from .parameters import (
+    Parameter,
+    ParameterFile,
+    ParameterValue,
+    evaluate_parameter_dict,
+    normalize_parameters,
+    write_params_file,
+)
 
 __all__ = [
     "Node",
@@ -57,8 +66,56 @@ class ParameterSource:
     values: dict[str, Any] = field(default_factory=dict)
 
 
+def _frontend_parameters(entity: Any) -> list[Any]:
+    """Return the `<param name= value=/>` and `<param from=/>` children of a `<node>`."""
+    result: list[Any] = []
+    for param in entity.get_attr("param", data_type=list, optional=True) or []:
+        source = param.get_attr("from", optional=True)
+        name = param.get_attr("name", optional=True)
+        if source is not None and name is not None:
+            raise RuntimeError("name and from attributes are mutually exclusive")
+        if source is not None:
+            result.append(ParameterFile(parse_substitution(str(source))))
+        elif name is not None:
+            value = param.get_attr("value", data_type=None, optional=True)
+            if value is None:
+                raise RuntimeError("either a value attribute or nested params are needed")
+            result.append({name: ParameterValue(parse_if_substitutions(value))})
+        else:
+            raise ValueError("param Entity should have name or from attribute")
+    return result
+
+
+@expose_action("node", module="launch_ros.actions")
 class Node(ExecuteProcess):
     """Run a ROS node: `<exe> [args] --ros-args -r __node:=... --params-file ... -r a:=b`."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<node pkg= exec= name= namespace= args= ros_args=>` with param/remap/env children."""
+        kwargs = parser.process_kwargs(entity)
+        kwargs["executable"] = parser.subs(entity, "exec", optional=False)
+        for key, attr in (
+            ("package", "pkg"),
+            ("name", "name"),
+            ("namespace", "namespace"),
+            ("exec_name", "exec_name"),
+        ):
+            value = parser.subs(entity, attr)
+            if value is not None:
+                kwargs[key] = value
+        for key, attr in (("arguments", "args"), ("ros_arguments", "ros_args")):
+            value = entity.get_attr(attr, optional=True)
+            if value is not None:
+                kwargs[key] = parser.command_line(value)
+        remaps = entity.get_attr("remap", data_type=list, optional=True) or []
+        if remaps:
+            pairs = [(parser.subs(r, "from", False), parser.subs(r, "to", False)) for r in remaps]
+            kwargs["remappings"] = pairs
+        params = _frontend_parameters(entity)
+        if params:
+            kwargs["parameters"] = params
+        return cls(**kwargs)
 
     def __init__(
         self,
@@ -147,7 +204,8 @@ class Node(ExecuteProcess):
         for item in self._parameters:
             if isinstance(item, dict):
                 values = evaluate_parameter_dict(context, item)
-                key = self.node_name if self.is_node_name_fully_specified() else "/**"
+                known = self.node_name and self.is_node_name_fully_specified()
+                key = self.node_name if known and self.node_name else "/**"
                 path = write_params_file(key, values) if write else None
                 self.parameter_sources.append(ParameterSource("dict", path, values))
                 args += ["--params-file", path or "<temporary params file>"]
@@ -214,8 +272,19 @@ class Node(ExecuteProcess):
         )
 
 
+@expose_action(
+    "push-ros-namespace",
+    "push_ros_namespace",
+    module="launch_ros.actions",
+    aliases=("PushROSNamespace",),
+)
 class PushRosNamespace(Action):
     """Prefix the namespace of the nodes that follow (in this scope)."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<push-ros-namespace namespace=/>`."""
+        return cls(parser.subs(entity, "namespace", False))
 
     def __init__(self, namespace: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -236,8 +305,15 @@ def _extend_global(context: Any, key: str, items: list[Any]) -> None:
     context.launch_configurations[key] = found
 
 
+@expose_action("set_parameter", module="launch_ros.actions")
 class SetParameter(Action):
     """Give every node that follows (in this scope) a parameter."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<set_parameter name= value=/>`."""
+        name, value = parser.subs(entity, "name", False), parser.subs(entity, "value", False)
+        return cls(name, value, **parser.condition(entity))
 
     def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -247,8 +323,14 @@ class SetParameter(Action):
         _extend_global(context, "global_params", [self.parameter.evaluate(context)])
 
 
+@expose_action("set_parameters_from_file", module="launch_ros.actions")
 class SetParametersFromFile(Action):
     """Give every node that follows (in this scope) the parameters of a params file."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<set_parameters_from_file filename=/>`."""
+        return cls(parser.subs(entity, "filename", False), **parser.condition(entity))
 
     def __init__(self, filename: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -258,8 +340,15 @@ class SetParametersFromFile(Action):
         _extend_global(context, "global_params", [perform_substitutions(context, self.filename)])
 
 
+@expose_action("set_remap", module="launch_ros.actions")
 class SetRemap(Action):
     """Give every node that follows (in this scope) a remapping."""
+
+    @classmethod
+    def parse(cls, entity: Any, parser: Any) -> Action:
+        """`<set_remap from= to=/>`."""
+        src, dst = parser.subs(entity, "from", False), parser.subs(entity, "to", False)
+        return cls(src, dst, **parser.condition(entity))
 
     def __init__(self, src: Any, dst: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)

@@ -10,6 +10,7 @@ from typing import Any
 
 import yaml
 
+from ..api.exposure import expose
 from ..api.substitution_syntax import parse_substitution
 from ..core.substitution import (
     Substitution,
@@ -29,6 +30,7 @@ __all__ = [
 WRITTEN_FILES: list[str] = []  # temporary params files of this process, removed after launch
 
 
+@expose("launch_ros.parameter_descriptions", "launch_ros.descriptions")
 class ParameterValue:
     """A parameter value, possibly from substitutions, with an optional type."""
 
@@ -55,6 +57,7 @@ def _is_plain_list(value: Any) -> bool:
     )
 
 
+@expose("launch_ros.parameter_descriptions", "launch_ros.descriptions")
 class ParameterFile:
     """A params YAML file, optionally with substitutions inside (`allow_substs`)."""
 
@@ -81,6 +84,7 @@ class ParameterFile:
         return Path(handle.name)
 
 
+@expose("launch_ros.parameter_descriptions", "launch_ros.descriptions")
 class Parameter:
     """One parameter given as a rule (`-p name:=value`)."""
 
@@ -119,7 +123,9 @@ def _normalize_value(value: Any) -> Any:
 def _normalize_dict(params: Mapping, prefix: str = "") -> dict[Any, Any]:
     normalized: dict[Any, Any] = {}
     for name, value in params.items():
-        key = name if isinstance(name, str) else tuple(normalize_to_list_of_substitutions(name))
+        key: str | tuple[Any, ...] = (
+            name if isinstance(name, str) else tuple(normalize_to_list_of_substitutions(name))
+        )
         if prefix:
             key = f"{prefix}.{key}" if isinstance(key, str) else (prefix, ".", *key)
         if isinstance(value, Mapping):

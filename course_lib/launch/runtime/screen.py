@@ -56,7 +56,7 @@ class LaunchLog:
 
     def file(self, text: str, name: str | None = None) -> None:
         """Append a line to launch.log (or to `<name>` in the run folder)."""
-        handle = self._file
+        handle: TextIO = self._file
         if name is not None:
             if name not in self._own:
                 self._own[name] = open(self.run_dir / name, "a", encoding="utf-8")  # noqa: SIM115

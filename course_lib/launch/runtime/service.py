@@ -195,7 +195,8 @@ class Runtime:
         # A Python-level handler runs at the next bytecode, before any output relayed after
         # it: launch's warning then always comes before what the interrupted nodes print.
         self._sigint_pending += 1
-        self._loop.call_soon_threadsafe(self.process_pending_signals)
+        if self._loop is not None:  # set before the handler is installed
+            self._loop.call_soon_threadsafe(self.process_pending_signals)
 
     def process_pending_signals(self) -> None:
         """Handle SIGINTs received but not handled yet (called before relaying output)."""

@@ -27,7 +27,7 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import Any, Protocol
 from urllib.parse import urlsplit
 
-from ...core.ports import held_only_by
+from ...core.host.ports import held_only_by
 from .record import PROGRESS_HOLDER_ENV, PROGRESS_URL_ENV, Record, record_body
 
 __all__ = [
@@ -44,16 +44,24 @@ _warned = threading.Event()  # one line per kernel, not one per self-check
 
 
 class _Check(Protocol):
-    what: str
-    passed: bool
+    @property
+    def what(self) -> str: ...
+
+    @property
+    def passed(self) -> bool: ...
 
 
 class SelfCheckResult(Protocol):
     """What the client needs of a lesson's self-check (course_lib.lessons.report.SelfCheck)."""
 
-    lesson: int
-    passed: bool
-    checks: Sequence[_Check]
+    @property
+    def lesson(self) -> int: ...
+
+    @property
+    def passed(self) -> bool: ...
+
+    @property
+    def checks(self) -> Sequence[_Check]: ...
 
 
 def _record(check: SelfCheckResult, user: str) -> Record:

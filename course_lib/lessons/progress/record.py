@@ -11,13 +11,16 @@ import json
 from dataclasses import dataclass
 from typing import Any
 
+from ..catalogue import LESSONS as _CATALOGUE
+from ..catalogue import NUMBERS
+
 # The environment variable that tells a learner's server (and so its kernels) where to post:
 # the service's direct URL, http://127.0.0.1:<port>/services/course-progress/. The hub sets it.
 PROGRESS_URL_ENV = "COURSE_PROGRESS_URL"
 # Where that URL is on the learner's own host (loopback), the account that holds its port (the
 # hub's launcher: root): nothing is sent to a port another account holds. The hub sets it.
 PROGRESS_HOLDER_ENV = "COURSE_PROGRESS_HOLDER_UID"
-LESSONS = range(1, 12)  # the lessons a record may name: 1 to 11
+LESSONS = NUMBERS  # the lessons a record may name: the catalogue's
 
 __all__ = [
     "EXERCISES",
@@ -43,14 +46,9 @@ _FIELDS = {
 MAX_EXERCISE_CHARS = 40
 # The lessons' exercises, by the name their attempts are counted under, with their lesson: a
 # learner's records are at most one a lesson and one an exercise (2,000 made-up names once made
-# a 4.3 MB store and a 303 KB admin page). tests/unit/lessons/progress ties it to the exercises.
-EXERCISES = {
-    "07 drive": 7,
-    "09 params file": 9,
-    "10 launch file": 10,
-    "11 saved panel": 11,
-    "11 travel": 11,
-}
+# a 4.3 MB store and a 303 KB admin page). Each lesson's SPEC names its exercises;
+# tests/unit/lessons/progress ties them to the exercises.
+EXERCISES = {name: spec.number for spec in _CATALOGUE for name in spec.exercises}
 _OPTIONAL = {"failed": "", "exercise": "", "attempt": 0}
 
 

@@ -35,7 +35,7 @@ def save_replay(lesson: Any) -> ReplayLink | None:
     """Write `lesson`'s replay page; return its link (None: nothing was recorded)."""
     if lesson.replay is None:
         return None
-    world = lesson._world
+    world = lesson.attached_world
     settings = world.settings if world is not None else None
     plot = lesson.state.get("speed_plot")
     return lesson.replay.save(plot=plot, settings=settings)

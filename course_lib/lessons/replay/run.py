@@ -20,18 +20,14 @@ from typing import Any
 
 from ...core.paths import learner_notebooks_dir
 from ...core.server_urls import served_file_url
+from ..catalogue import LESSONS
 
 __all__ = ["DRIVEN_NODES", "KEEP", "LessonRun", "ReplayLink", "replay_dir"]
 
 _log = logging.getLogger(__name__)
 
 # The lessons whose robot drives, and the node that drives it (its changes are marked).
-DRIVEN_NODES = {
-    7: "/param_vel_node",
-    9: "/param_vel_node",
-    10: "/param_vel_node",
-    11: "/descriptor_vel_node",
-}
+DRIVEN_NODES = {spec.number: spec.driven_node for spec in LESSONS if spec.driven_node}
 KEEP = 5  # replays kept per lesson (the oldest go first)
 FPS = 25  # every second /odom message at its 50 Hz: even frames, a compact page
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ...core.atomic_files import atomic_write
+from ...core.files.atomic_files import atomic_write
 
 __all__ = ["ATTEMPTS_FILE", "AttemptLog", "Tally"]
 

@@ -1,20 +1,29 @@
 """What a file gives a node at start-up: the params file a command line passes, and the value
 a params file or a launch file gives one parameter, or why it gives none (read, not run).
 
-A params file is read as rcl reads it: its top key must select the node, the value must sit
-under `ros__parameters:`, and a misspelt name is kept silently as an undeclared override.
+A params file is read as rcl reads it (ros2/paramfile.py holds rcl's rules): a section's name
+must select the node, the value must sit under `ros__parameters:`, and a misspelt name is kept
+silently as an undeclared override.
 """
 
 from __future__ import annotations
 
 import difflib
-import itertools
 import logging
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import yaml
+
+from ...ros2.paramfile import (
+    PARAMS_KEY,
+    Section,
+    key_matches,
+    load_params_text,
+    node_sections,
+    params_files,
+)
 
 __all__ = [
     "UNREAD_SECTIONS",
@@ -28,11 +37,11 @@ _log = logging.getLogger(__name__)
 
 
 def params_file_of(argv: list[str], cwd: Path) -> Path | None:
-    """Return the params file a node's command line passes (`--params-file FILE`), if any."""
-    for flag, value in itertools.pairwise(argv):
-        if flag == "--params-file":
-            path = Path(value)
-            return path if path.is_absolute() else cwd / path
+    """Return the (first) params file a node's command line passes (`--ros-args
+    --params-file FILE`, as rcl reads its arguments), if any."""
+    for value in params_files(argv)[:1]:
+        path = Path(value)
+        return path if path.is_absolute() else cwd / path
     return None
 
 
@@ -92,17 +101,19 @@ def _missing(params: dict[Any, Any], key: str, param: str) -> FileValue:
     return FileValue(problem="file_sets_none", key=key)
 
 
-def _section_value(section: Any, key: str, param: str) -> FileValue:
+def _section_value(section: Section, param: str) -> FileValue:
     """Return what one node's section gives `param`, as rcl reads it: values only under
     `ros__parameters:`; a key with nothing under it, or with no value, stops the node."""
-    if section is None:
-        return FileValue(problem="empty_section", key=key)
-    if not isinstance(section, dict):
-        return FileValue(problem="unreadable")
-    if section and "ros__parameters" not in section:
-        first = str(next(iter(section)))
-        return FileValue(problem="no_ros_parameters", key=key, written=first)
-    params = section.get("ros__parameters", {})
+    body, key = section.body, section.name
+    if not section.has_params:
+        if body is None:
+            return FileValue(problem="empty_section", key=key)
+        if not isinstance(body, dict):
+            return FileValue(problem="unreadable")
+        if body:
+            return FileValue(problem="no_ros_parameters", key=key, written=str(next(iter(body))))
+        return FileValue(problem="file_sets_none", key=key)
+    params = section.params
     if params is None:
         return FileValue(problem="empty_section", key="ros__parameters")
     if not isinstance(params, dict) or (param in params and params[param] is None):
@@ -113,21 +124,22 @@ def _section_value(section: Any, key: str, param: str) -> FileValue:
 
 
 def params_file_value(path: Path, node: str, param: str = "velocity") -> FileValue:
-    """Return the `param` a params file gives `node` (as rcl reads it: its key must match)."""
+    """Return the `param` a params file gives `node` (as rcl reads it: a section's name must
+    select the node, see ros2/paramfile.py)."""
     try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+        data = load_params_text(path.read_text(encoding="utf-8"), name=str(path))
     except FileNotFoundError:
         return FileValue(problem="missing_file")
-    except (OSError, yaml.YAMLError):
+    except (OSError, yaml.YAMLError, ValueError):  # ValueError: an alias bomb, refused
         return FileValue(problem="unreadable")
     if not isinstance(data, dict) or not data:
         return FileValue(problem="wrong_key", key="(none)")
-    if "ros__parameters" in data:
+    if PARAMS_KEY in data:
         return FileValue(problem="no_node_key")
-    names = {node, node.lstrip("/"), "/**", "**"}
-    found = [_section_value(data[k], str(k), param) for k in data if k in names]
+    sections = node_sections(data)
+    found = [_section_value(s, param) for s in sections if key_matches(s.name, node)]
     if not found:
-        return FileValue(problem="wrong_key", key=str(next(iter(data))))
+        return FileValue(problem="wrong_key", key=sections[0].name)
     unread = [f for f in found if f.problem in (*UNREAD_SECTIONS, "unreadable")]
     given = [f for f in found if f.value is not None or f.problem == "integer"]
     return (unread or given[-1:] or found)[0]  # a later section overrides an earlier one

@@ -38,7 +38,7 @@ class Verdict:
         return self.message + (f"\nHint: {self.hint}" if self.hint else "") + "\n"
 
 
-class _Words(dict):  # type: ignore[type-arg]
+class _Words(dict[str, Any]):
     def __missing__(self, key: str) -> str:
         return f"<{key}>"
 

@@ -160,8 +160,8 @@ class ParameterPanel:
         said = ""
         with self._lock:
             self._reading = False
-            fresh = descriptors is not None and gone_count == self._gone_count
-            if fresh and not self._closed:
+            fresh = gone_count == self._gone_count and not self._closed
+            if descriptors is not None and fresh:
                 self._identity, self._stopped, self._command = identity, None, command
                 self._apply(descriptors, values)
                 if news:

@@ -48,8 +48,7 @@ class SpeedPlot:
         self.redraws = 0  # live redraws so far
         self._image: Any = None
         self._thread: threading.Thread | None = None
-        node = session.node
-        self._odom = node.create_subscription(
+        self._odom = session.node.create_subscription(
             Float64MultiArray, SAMPLES_TOPIC, self._on_samples, SAMPLES_DEPTH
         )
         self._stop_events = subscribe_parameter_events(session, self._on_event)

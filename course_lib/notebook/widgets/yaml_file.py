@@ -8,7 +8,7 @@ from typing import Any
 
 import yaml
 
-from ...core.atomic_files import atomic_write
+from ...core.files.atomic_files import atomic_write
 
 __all__ = ["cli_value", "params_yaml", "set_command", "write_params_file"]
 

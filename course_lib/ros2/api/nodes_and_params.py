@@ -120,9 +120,9 @@ def param_load(node: str, path: str, *, use_wildcard: bool = True) -> list[SetRe
 
 def topic_echo_once(topic: str, *, timeout: float = 5.0) -> Any:
     """Return the next message published on `topic` (a ROS message object)."""
-    from ..verbs.console import CollectingConsole
-    from ..verbs.context import Context
-    from ..verbs.topic_stream import _expand, _import_message, type_of
+    from ..verbkit.console import CollectingConsole
+    from ..verbkit.context import Context
+    from ..verbkit.topic_types import expand_topic, message_class, type_of
 
     ctx = Context(CollectingConsole(), client)
     type_name = type_of(ctx, topic)
@@ -133,7 +133,7 @@ def topic_echo_once(topic: str, *, timeout: float = 5.0) -> Any:
         )
     inbox: queue.Queue[Any] = queue.Queue()
     node = client().node
-    sub = node.create_subscription(_import_message(type_name), _expand(topic), inbox.put, 10)
+    sub = node.create_subscription(message_class(type_name), expand_topic(topic), inbox.put, 10)
     try:
         return inbox.get(timeout=timeout)
     except queue.Empty:

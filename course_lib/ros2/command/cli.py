@@ -10,6 +10,11 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from course_lib.ros2.node.client import RosClient
 
 __all__ = ["main"]
 
@@ -27,7 +32,7 @@ def _local(argv: list[str], domain: str | None, *, direct: bool = False) -> int:
     import shutil
 
     from course_lib.ros2.command.commands import Context, command_of, execute
-    from course_lib.ros2.verbs.console import StreamingConsole
+    from course_lib.ros2.verbkit.console import StreamingConsole
 
     def write(stream: str, text: str) -> None:
         target = sys.stdout if stream == "stdout" else sys.stderr
@@ -47,10 +52,10 @@ def _local(argv: list[str], domain: str | None, *, direct: bool = False) -> int:
     return execute(argv, ctx)
 
 
-def _direct_client(argv: list[str], env: dict[str, str]):  # type: ignore[no-untyped-def]
+def _direct_client(argv: list[str], env: dict[str, str]) -> Callable[[], RosClient]:
     """Return a factory of a client on a node of this command's own (closed at exit)."""
 
-    def make():  # type: ignore[no-untyped-def]
+    def make() -> RosClient:
         import atexit
 
         from course_lib.ros2.node.direct import DirectNode
@@ -82,7 +87,7 @@ def _own_node_options(argv: list[str]) -> tuple[bool, bool]:
     return bool(getattr(args, "no_daemon", False)), bool(getattr(args, "use_sim_time", False))
 
 
-def _in_process_client():  # type: ignore[no-untyped-def]
+def _in_process_client() -> RosClient:
     from course_lib.ros2.node.session_client import client
 
     return client()

@@ -9,8 +9,8 @@ from collections.abc import Callable
 from typing import Any
 
 from ..results import CommandOutput
-from ..verbs.console import CollectingConsole, Console
-from ..verbs.context import Context
+from ..verbkit.console import CollectingConsole, Console
+from ..verbkit.context import Context
 from . import parsers, table
 
 __all__ = ["Context", "execute", "not_in_course", "run_collected"]

@@ -22,12 +22,12 @@ import time
 from collections.abc import Mapping
 from typing import Any
 
+from ...core.host.ports import unix_socket_answers
 from ...core.param_journal import acting_door
-from ...core.ports import unix_socket_answers
 from ...processes.children import OWNER_ENV, ChildProcess, owner_alive, spawn
 from ...processes.ownership import LAB_ENV
 from ..node.connect import IDLE_ENV, SHUTDOWN, daemon_argv, daemon_lock, daemon_socket
-from ..verbs.console import StreamingConsole
+from ..verbkit.console import StreamingConsole
 from .commands import Context, execute
 
 __all__ = ["serve", "start_daemon"]

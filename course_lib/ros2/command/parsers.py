@@ -12,9 +12,9 @@ import sys
 import threading
 import types
 from collections import OrderedDict
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NoReturn, cast
 
 from . import table
 
@@ -68,18 +68,18 @@ class _Parser(argparse.ArgumentParser):
             to_stderr = file is _Stderr or file is sys.stderr
             (sink.stderr if to_stderr else sink.stdout).append(message)
 
-    def exit(self, status: int = 0, message: str | None = None):  # type: ignore[no-untyped-def]
+    def exit(self, status: int = 0, message: str | None = None) -> NoReturn:
         if message:
             self._emit(message, _Stderr)
         raise ParseExit(status)
 
-    def print_help(self, file=None) -> None:  # type: ignore[no-untyped-def]
+    def print_help(self, file: Any = None) -> None:
         self._emit(self.format_help(), file)
 
-    def print_usage(self, file=None) -> None:  # type: ignore[no-untyped-def]
+    def print_usage(self, file: Any = None) -> None:
         self._emit(self.format_usage(), file)
 
-    def error(self, message: str):  # type: ignore[no-untyped-def]
+    def error(self, message: str) -> NoReturn:
         self.print_usage(_Stderr)
         self.exit(2, f"{self.prog}: error: {message}\n")
 
@@ -118,15 +118,15 @@ class _MutableString:
     def __init__(self) -> None:
         self.value = ""
 
-    def __getattr__(self, name: str):  # type: ignore[no-untyped-def]
+    def __getattr__(self, name: str) -> Any:
         return getattr(self.value, name)
 
-    def __iter__(self):  # type: ignore[no-untyped-def]
+    def __iter__(self) -> Iterator[str]:
         return self.value.__iter__()
 
 
 def _ignore_zero_exit(original: Callable[..., None]) -> Callable[..., None]:
-    def exit_(self, status: int = 0, message: str | None = None) -> None:  # type: ignore[no-untyped-def]
+    def exit_(self: object, status: int = 0, message: str | None = None) -> None:
         if status == 0:
             return
         original(status=status, message=message)
@@ -134,7 +134,9 @@ def _ignore_zero_exit(original: Callable[..., None]) -> Callable[..., None]:
     return exit_
 
 
-def _lenient_parse(root: _Parser, parsers: Sequence[_Parser], argv: list[str]):  # type: ignore[no-untyped-def]
+def _lenient_parse(
+    root: _Parser, parsers: Sequence[_Parser], argv: list[str]
+) -> argparse.Namespace:
     saved = {p: (p.print_help, p.exit) for p in parsers}
     for p in parsers:
         p.print_help = lambda *a, **k: None  # type: ignore[method-assign]
@@ -158,7 +160,7 @@ def _add_on_demand(
     description = _MutableString()
     sub = parser.add_subparsers(
         title="Commands",
-        description=description,  # type: ignore[arg-type]
+        description=cast(str, description),  # argparse reads it as text, filled in by then
         metavar=f"Call `{cli_name} <command> -h` for more detailed usage.",
     )
     sub.dest = " " + dest.lstrip("_")

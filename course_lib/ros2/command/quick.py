@@ -115,7 +115,7 @@ def install_launcher(bin_dir: str | Path | None = None) -> Path:
     """Write the `ros2` launcher into the venv's bin folder (replacing the console script)."""
     from pathlib import Path
 
-    from ...core.atomic_files import atomic_write
+    from ...core.files.atomic_files import atomic_write
     from ...core.paths import REPO_ROOT, venv_bin_dir
 
     folder = Path(bin_dir) if bin_dir else venv_bin_dir()

@@ -1,114 +1,28 @@
-"""Talk to the ROS graph and to nodes' parameter services through the session's client node."""
+"""The course's client node: its view of the graph (graph_client.py), its calls to nodes'
+parameter services (param_calls.py) and the journal of the changes it asks for
+(set_journal.py), behind the one object every door uses."""
 
 from __future__ import annotations
 
 import math
-import os
-import threading
 import time
-from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from rcl_interfaces.msg import Parameter, ParameterType
-from rcl_interfaces.msg import ParameterValue as ParameterValueMsg
-from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters, SetParameters
-from rclpy.node import NodeNameNonExistentError
-from rclpy.topic_or_service_is_hidden import topic_or_service_is_hidden
+from ..results import Descriptor, NodeInfo, NodeName, SetResult, TopicInfo
+from ..values import ParamValue, journal_value
+from .discovery import GraphView
+from .graph_client import DISCOVERY_WAIT_S, YOUNG_CLIENT_S, GraphClient
+from .param_calls import SERVICE_WAIT_S, ParamCalls, ServiceCallError
+from .set_journal import SetJournal, Stored
 
-from ...core import param_journal
-from ...core.waiting import wait_until
-from ..results import Descriptor, NodeInfo, NodeName, ParamRange, SetResult, TopicInfo
-from ..values import VALUE_FIELDS, ParamValue, journal_value, value_from_msg
-from .discovery import (
-    GHOST_GRACE_S,
-    UNKNOWN_NODE,
-    GraphView,
-    domain_newcomers,
-    participant_prefix,
-    prefix_pid,
-    profile_timing,
-    read_bound_participants,
-    unseen_participants,
-    wait_joined,
-    wait_settled,
-    without_ghosts,
-)
-
-__all__ = ["DISCOVERY_WAIT_S", "RosClient", "ServiceCallError"]
-
-# How long a node-targeted command looks for a node the graph does not show yet. The real
-# tools wait 1 s (`--timeout`) and so miss freshly started nodes; the course waits longer.
-DISCOVERY_WAIT_S = 2.5
-# Until this age, a node may still be unknown to a fresh client (Fast DDS re-announces every
-# 3 s by default), so node lookups wait at least until the client is this old.
-YOUNG_CLIENT_S = 4.0
-# A node missing from a graph known whole for this long is not there: "Node not found" at
-# once, not after DISCOVERY_WAIT_S (a just-started node is waited for: graph_complete).
-SETTLED_QUIET_S = 0.15
-# While participants bound on this host are still unseen (a fresh client, or a starved process
-# on a busy host: seen taking over 4 s), a node lookup waits up to this long before "not found".
-INCOMPLETE_WAIT_S = 12.0
-SERVICE_WAIT_S = 5.0
-# A joining node's parameter services follow its name within this long, or it has none
-# (`start_parameter_services=False`: it never answers, so nothing waits for its answer).
-SERVICES_GRACE_S = 1.0
-CALL_TIMEOUT_S = 10.0
-# First wait for a reply before re-sending a read (a reply normally takes about 1 ms).
-FIRST_ATTEMPT_S = 0.5
-# Services whose requests change the node: sent exactly once, after a probe (see _call).
-_WRITES = {"set_parameters": SetParameters.Request}
-_POLL_S = 0.02
-_SERVICES = {
-    "list_parameters": ListParameters,
-    "get_parameters": GetParameters,
-    "set_parameters": SetParameters,
-    "describe_parameters": DescribeParameters,
-}
-
-
-class ServiceCallError(RuntimeError):
-    """A parameter service did not answer (ros2cli prints the message and exits 1)."""
-
-    @property
-    def cli_message(self) -> str:
-        return str(self)
-
-
-def value_to_msg(value: ParamValue) -> ParameterValueMsg:
-    """Convert a ParamValue into an rcl_interfaces ParameterValue."""
-    msg = ParameterValueMsg(type=value.type)
-    field = VALUE_FIELDS.get(value.type)
-    if field is not None:
-        raw = value.value
-        setattr(msg, field, list(raw) if value.type >= ParameterType.PARAMETER_BYTE_ARRAY else raw)
-    return msg
-
-
-def _descriptor(msg: Any) -> Descriptor:
-    ranges = tuple(
-        ParamRange(r.from_value, r.to_value, r.step)
-        for r in [*msg.floating_point_range, *msg.integer_range]
-    )
-    return Descriptor(
-        name=msg.name,
-        type=msg.type,
-        description=msg.description,
-        additional_constraints=msg.additional_constraints,
-        read_only=msg.read_only,
-        dynamic_typing=msg.dynamic_typing,
-        ranges=ranges,
-    )
-
-
-def _is_hidden_name(name: str) -> bool:
-    return any(part.startswith("_") for part in name.split("/"))
-
-
-def _topics(pairs: Sequence[tuple[str, Sequence[str]]], include_hidden: bool) -> tuple:
-    return tuple(
-        TopicInfo(n, tuple(t)) for n, t in pairs if include_hidden or not _is_hidden_name(n)
-    )
+__all__ = [
+    "DISCOVERY_WAIT_S",
+    "SERVICE_WAIT_S",
+    "YOUNG_CLIENT_S",
+    "RosClient",
+    "ServiceCallError",
+]
 
 
 class RosClient:
@@ -122,192 +36,37 @@ class RosClient:
         born: float | None = None,
     ) -> None:
         self.node = node
-        self._wait_future = wait_future
-        self._clients: dict[tuple[str, str], Any] = {}
-        # Per client: the server reply writers whose path to our reply reader a probe proved.
-        self._proven: dict[tuple[str, str], frozenset[bytes]] = {}
-        self._lock = threading.Lock()
-        self._born = time.monotonic() if born is None else born
-        # This process's participant reads the course's Fast DDS profile from its environment.
-        self._timing = profile_timing(os.environ.get("FASTRTPS_DEFAULT_PROFILES_FILE"))
-        self._domain_id = node.context.get_domain_id()
-        # When this client first listed each node name it lists now (see node_names).
-        self._first_listed: dict[str, float] = {}
+        self.calls = ParamCalls(node, wait_future)
+        self.graph = GraphClient(
+            node, answers=lambda name, timeout: self.answers(name, timeout=timeout), born=born
+        )
+        self.journal = SetJournal(node.context.get_domain_id())
 
-    # -- graph ---------------------------------------------------------------------------
+    # -- the graph (GraphClient) ---------------------------------------------------------
     def settle(self, *, min_age_s: float = 0.0) -> None:
-        """Wait until this client has discovered the whole graph (at once when it is warm).
-
-        `min_age_s` is `--spin-time`: a client younger than that waits until it is that old.
-        """
-        wait_settled(
-            self.graph_view,
-            born=self._born,
-            timing=self._timing,
-            min_age_s=min_age_s,
-            starting=self._starting,
-            spinning=self._spinning,
-        )
-
-    def _starting(self) -> frozenset[int]:
-        return frozenset(domain_newcomers(self._domain_id, joined=True))
-
-    def _spinning(self, pids: frozenset[int], timeout: float) -> bool:
-        """Wait (at most `timeout` s) until every named node of these processes (the low 16
-        bits of their pids, as participants carry them) answers a parameter request; return
-        whether all did. Hidden nodes (the course's own clients) and nodes made without
-        parameter services never answer: the graph's quiet tells when those are whole."""
-        deadline = time.monotonic() + timeout
-        holders, _settled = self._holders()
-        named = [
-            name
-            for name, prefixes in holders.items()
-            if not _is_hidden_name(name) and any(prefix_pid(p) in pids for p in prefixes)
-        ]
-        # a node's name can come before its services: they have a moment to show (each node
-        # is looked up until they do, not again)
-        offering: set[str] = set()
-
-        def all_offer() -> bool:
-            offering.update(n for n in named if n not in offering and self._offers_parameters(n))
-            return len(offering) == len(named)
-
-        wait_until(all_offer, min(SERVICES_GRACE_S, timeout))
-        return all(
-            self.answers(name, timeout=max(0.0, deadline - time.monotonic()))
-            for name in named
-            if name in offering
-        )
-
-    def _offers_parameters(self, full_name: str) -> bool:
-        """Return whether the graph shows the node's `list_parameters` service (rclpy makes
-        it in the node's constructor, unless `start_parameter_services=False`)."""
-        namespace, _, name = full_name.rpartition("/")
-        try:
-            services = self.node.get_service_names_and_types_by_node(name, namespace or "/")
-        except NodeNameNonExistentError:
-            return False
-        return any(service == f"{full_name}/list_parameters" for service, _types in services)
+        """Wait until this client has discovered the whole graph (at once when it is warm)."""
+        self.graph.settle(min_age_s=min_age_s)
 
     def wait_joined(self) -> None:
-        """Wait (a warm client) until a node whose process is starting has been seen whole:
-        what a lookup counts (publishers, services) is then all of it, every time."""
-        if self.age() >= self._timing.warm_s:
-            wait_joined(
-                self.graph_view,
-                self._timing,
-                self._starting,
-                time.monotonic,
-                time.sleep,
-                self._spinning,
-            )
+        """Wait (a warm client) until a node whose process is starting has been seen whole."""
+        self.graph.wait_joined()
 
     def wait_all_seen(self, timeout: float) -> bool:
-        """Wait (at most `timeout` s) until this client has discovered every participant its
-        domain has on this host, e.g. a node just started; return whether it has."""
-        deadline = time.monotonic() + timeout
-        while True:
-            view = self.graph_view()
-            if not view.missing_participants and not view.unknown_endpoints:
-                return True
-            if time.monotonic() >= deadline:
-                return False
-            time.sleep(_POLL_S)
+        """Wait until every participant of the domain on this host is seen; return whether."""
+        return self.graph.wait_all_seen(timeout)
 
     def graph_view(self) -> GraphView:
         """Return the node and topic names seen, and what is known to be missing from them."""
-        node = self.node
-        topics = [name for name, _types in node.get_topic_names_and_types()]
-        endpoints = [
-            info
-            for name in topics
-            for infos in (
-                node.get_publishers_info_by_topic(name),
-                node.get_subscriptions_info_by_topic(name),
-            )
-            for info in infos
-        ]
-        unknown = sum(info.node_name == UNKNOWN_NODE for info in endpoints)
-        bound = read_bound_participants(self._domain_id)
-        seen = {participant_prefix(info.endpoint_gid) for info in endpoints}
-        missing = None if bound is None else unseen_participants(bound, seen)
-        nodes = frozenset(n.full_name for n in self.node_names(include_hidden=True))
-        pids = frozenset(prefix_pid(prefix) for prefix in seen)
-        return GraphView(nodes, frozenset(topics), unknown, missing, len(endpoints), pids)
+        return self.graph.graph_view()
 
     @property
     def uses_sim_time(self) -> bool:
         """Return whether this client's node runs on simulation time (`--use-sim-time`)."""
-        return bool(self.node.get_parameter("use_sim_time").value)
+        return self.graph.uses_sim_time
 
     def node_names(self, *, include_hidden: bool = False) -> list[NodeName]:
-        """Return the nodes the graph shows (hidden ones only if asked), less the ghosts of
-        nodes that have left (`discovery.without_ghosts`). A name just listed without an
-        endpoint is waited for (at most GHOST_GRACE_S): a new node's endpoints follow its name,
-        a ghost's never do."""
-        deadline = time.monotonic() + GHOST_GRACE_S + 0.5
-        while True:
-            listed = [
-                NodeName(name, ns, ns + ("" if ns.endswith("/") else "/") + name)
-                for name, ns in self.node.get_node_names_and_namespaces()
-            ]
-            full = [n.full_name for n in listed]
-            now = time.monotonic()
-            first = self._first_listed
-            self._first_listed = first = {name: first.get(name, now) for name in full}
-            if not self._may_list_ghosts(listed):
-                break
-            holders, settled = self._holders()
-            ages = {name: now - since for name, since in first.items()}
-            young = [n for n in full if not holders.get(n) and ages[n] < GHOST_GRACE_S]
-            if settled and young and now < deadline:
-                time.sleep(_POLL_S)
-                continue
-            kept = Counter(without_ghosts(full, holders, settled, listed_for=ages))
-            unique = []
-            for name in listed:
-                if kept[name.full_name] > 0:
-                    kept[name.full_name] -= 1
-                    unique.append(name)
-            listed = unique
-            break
-        return [n for n in listed if include_hidden or (n.name and not n.name.startswith("_"))]
-
-    def _may_list_ghosts(self, listed: Sequence[NodeName]) -> bool:
-        """Return whether a name is listed twice, or without an endpoint of its own (a ghost
-        has none); the full search of the graph (`_holders`) runs only then."""
-        if len({n.full_name for n in listed}) < len(listed):
-            return True
-        node = self.node
-        queries = (
-            node.get_publisher_names_and_types_by_node,
-            node.get_service_names_and_types_by_node,
-            node.get_subscriber_names_and_types_by_node,
-            node.get_client_names_and_types_by_node,
-        )
-        for name in listed:
-            try:
-                if not any(query(name.name, name.namespace) for query in queries):
-                    return True
-            except NodeNameNonExistentError:
-                return True  # it left while we looked: the graph is changing
-        return False
-
-    def _holders(self) -> tuple[dict[str, set[tuple[int, ...]]], bool]:
-        """Return the participants holding endpoints of each node name, and whether every
-        participant bound on this host has been seen (the graph is settled)."""
-        node = self.node
-        holders: dict[str, set[tuple[int, ...]]] = {}
-        for topic, _types in node.get_topic_names_and_types(no_demangle=True):
-            for info in (
-                *node.get_publishers_info_by_topic(topic, no_mangle=True),
-                *node.get_subscriptions_info_by_topic(topic, no_mangle=True),
-            ):
-                full = info.node_namespace.rstrip("/") + "/" + info.node_name
-                holders.setdefault(full, set()).add(participant_prefix(info.endpoint_gid))
-        bound = read_bound_participants(self._domain_id)
-        seen = set().union(*holders.values()) if holders else set()
-        return holders, bound is not None and unseen_participants(bound, seen) == 0
+        """Return the nodes the graph shows (hidden ones only if asked), less ghosts."""
+        return self.graph.node_names(include_hidden=include_hidden)
 
     def wait_for_node(
         self,
@@ -318,16 +77,10 @@ class RosClient:
         clock: Callable[[], float] = time.monotonic,
         sleep: Callable[[float], None] = time.sleep,
     ) -> bool:
-        """Wait (bounded, at least DISCOVERY_WAIT_S) until `full_name` is in the graph; while
-        this host has participants of the domain the client has not seen, or has seen without
-        their node names yet, up to INCOMPLETE_WAIT_S. (`clock` and `sleep`: as in
-        `wait_settled`.)"""
-
-        def found() -> bool:
-            names = self.node_names(include_hidden=include_hidden)
-            return full_name in {n.full_name for n in names}
-
-        return self.wait_for(found, timeout=timeout, clock=clock, sleep=sleep)
+        """Wait (bounded) until `full_name` is in the graph; return whether it is."""
+        return self.graph.wait_for_node(
+            full_name, include_hidden=include_hidden, timeout=timeout, clock=clock, sleep=sleep
+        )
 
     def wait_for(
         self,
@@ -338,260 +91,84 @@ class RosClient:
         clock: Callable[[], float] = time.monotonic,
         sleep: Callable[[float], None] = time.sleep,
     ) -> bool:
-        """Wait until `found()` (a node, a topic) as `wait_for_node` does: a graph known whole
-        for SETTLED_QUIET_S that still lacks it is an answer ("not there") at once. `limit`
-        caps the whole wait."""
-        start = clock()
-        deadline = start + max(float(timeout), DISCOVERY_WAIT_S, YOUNG_CLIENT_S - self.age())
-        complete_since: float | None = None
-        while not found():
-            now = clock()
-            if now - start >= limit:
-                return found()
-            if now >= deadline:
-                view = self.graph_view()  # a participant unseen, or seen with nameless endpoints
-                partial = bool(view.missing_participants) or bool(view.unknown_endpoints)
-                if not partial or now - start >= INCOMPLETE_WAIT_S:
-                    return found()  # a last look: it may have come with that view
-            if self.graph_complete():
-                complete_since = now if complete_since is None else complete_since
-                if now - complete_since >= SETTLED_QUIET_S:
-                    return found()  # the whole domain is known: it is in it or not
-            else:
-                complete_since = None
-            sleep(_POLL_S)
-        return True
+        """Wait until `found()`, as `wait_for_node` waits for a node; `limit` caps the wait."""
+        return self.graph.wait_for(found, timeout=timeout, limit=limit, clock=clock, sleep=sleep)
 
     def graph_complete(self) -> bool:
-        """Return whether this client knows the whole domain: it is warm, has seen every
-        participant bound on this host with every endpoint's node named, and no process of
-        the domain is young enough to be starting a node that has not joined DDS yet."""
-        if self.age() < self._timing.warm_s:
-            return False
-        view = self.graph_view()
-        if view.missing_participants != 0 or view.unknown_endpoints:
-            return False  # None: /proc cannot count participants here
-        if domain_newcomers(self._domain_id):
-            return False  # a process of the domain is starting: its node may follow
-        # a young process that joined: seen by its pid (a count is fooled by the lingering
-        # participant of a node just stopped)
-        young = domain_newcomers(self._domain_id, joined=True)
-        return all(pid & 0xFFFF in view.participant_pids for pid in young)
+        """Return whether this client knows the whole domain."""
+        return self.graph.graph_complete()
 
     def topics(self, *, include_hidden: bool = False) -> list[TopicInfo]:
         """Return the topics with their types, in the graph's order."""
-        return [
-            TopicInfo(name, tuple(types))
-            for name, types in self.node.get_topic_names_and_types()
-            if include_hidden or not topic_or_service_is_hidden(name)
-        ]
+        return self.graph.topics(include_hidden=include_hidden)
 
     def node_info(self, full_name: str, *, include_hidden: bool = False) -> NodeInfo:
         """Return the publishers, subscribers, services and actions of one node."""
-        name = full_name.rsplit("/", 1)[-1]
-        namespace = full_name.rsplit("/", 1)[0] or "/"
-        # rclpy.action imports its messages, and with them numpy (9 MiB): only when asked
-        from rclpy.action.graph import (
-            get_action_client_names_and_types_by_node,
-            get_action_server_names_and_types_by_node,
-        )
+        return self.graph.node_info(full_name, include_hidden=include_hidden)
 
-        node = self.node
-        by_node = (name, namespace)
-        return NodeInfo(
-            name=full_name,
-            subscribers=_topics(
-                node.get_subscriber_names_and_types_by_node(*by_node), include_hidden
-            ),
-            publishers=_topics(
-                node.get_publisher_names_and_types_by_node(*by_node), include_hidden
-            ),
-            service_servers=_topics(
-                node.get_service_names_and_types_by_node(*by_node), include_hidden
-            ),
-            service_clients=_topics(
-                node.get_client_names_and_types_by_node(*by_node), include_hidden
-            ),
-            action_servers=_topics(
-                get_action_server_names_and_types_by_node(node, *by_node), include_hidden
-            ),
-            action_clients=_topics(
-                get_action_client_names_and_types_by_node(node, *by_node), include_hidden
-            ),
-        )
+    def age(self) -> float:
+        """Return how long this client node has been discovering the graph, in seconds."""
+        return self.graph.age()
 
-    # -- parameter services --------------------------------------------------------------
-    def _client(self, node_name: str, service: str) -> Any:
-        key = (node_name, service)
-        with self._lock:
-            if key not in self._clients:
-                self._clients[key] = self.node.create_client(
-                    _SERVICES[service], f"{node_name}/{service}"
-                )
-            return self._clients[key]
-
+    # -- parameter services (ParamCalls) and the journal (SetJournal) --------------------
     def services_ready(self, node_name: str, *, timeout: float = SERVICE_WAIT_S) -> bool:
         """Wait until the node's parameter services answer requests; False after `timeout`."""
-        clients = [self._client(node_name, s) for s in _SERVICES]
-        return wait_until(lambda: all(c.service_is_ready() for c in clients), timeout)
+        return self.calls.services_ready(node_name, timeout=timeout)
 
     def answers(self, node_name: str, *, timeout: float) -> bool:
-        """Return whether the node answers a parameter request within `timeout`: a node does
-        once it spins, that is once its constructor (which makes its publishers) is done."""
-        request = ListParameters.Request(depth=1)
-        try:
-            self._call(node_name, "list_parameters", request, within=timeout)
-        except ServiceCallError:
-            return False
-        return True
-
-    def _call(
-        self, node_name: str, service: str, request: Any, *, within: float | None = None
-    ) -> Any:
-        """Call one of the node's parameter services once it is ready; return the response.
-
-        By default the service has SERVICE_WAIT_S to be ready, then CALL_TIMEOUT_S to answer;
-        `within` bounds both together (ServiceCallError once it has passed).
-        """
-        started = time.monotonic()
-        client = self._client(node_name, service)
-        if not wait_until(client.service_is_ready, SERVICE_WAIT_S if within is None else within):
-            raise ServiceCallError(
-                f"Wait for service timed out waiting for parameter services for node {node_name}"
-            )
-        deadline = time.monotonic() + CALL_TIMEOUT_S if within is None else started + within
-        if service not in _WRITES:
-            return self._call_with_retries(client, node_name, request, deadline)
-        # Fast DDS's server waits only 100 ms for our reply reader to match before it drops a
-        # reply, and a freshly created client (or a restarted node) is "ready" as soon as we
-        # know the server, before the server knows our reader. An empty request changes
-        # nothing and may be repeated: once one is answered, the reply path exists and the
-        # write is sent exactly once (a re-sent write would apply twice). The proof holds
-        # until the server's reply writer changes (a restarted node); unknown writers: probe.
-        key, writers = (node_name, service), self._reply_writers(node_name, service)
-        if not writers or self._proven.get(key) != writers:
-            self._call_with_retries(client, node_name, _WRITES[service](), deadline)
-            self._proven[key] = writers
-        return self._call_once(client, node_name, request, deadline)
-
-    def _reply_writers(self, node_name: str, service: str) -> frozenset[bytes]:
-        """Return the GIDs of the service's reply writers, as the local graph knows them.
-
-        ROS 2 maps a service's replies to the DDS topic `rr/<service>Reply`; an RMW that
-        names it otherwise yields nothing here, and every write is then probed first.
-        """
-        topic = f"rr{node_name}/{service}Reply"
-        try:
-            infos = self.node.get_publishers_info_by_topic(topic, no_mangle=True)
-        except Exception:  # an RMW without this graph query: probe every write
-            return frozenset()
-        return frozenset(bytes(info.endpoint_gid) for info in infos)
-
-    def _timed_out(self, node_name: str) -> ServiceCallError:
-        return ServiceCallError(
-            f"Exception while calling service of node '{node_name}': "
-            f"no answer within {CALL_TIMEOUT_S:g} s"
-        )
-
-    def _call_once(self, client: Any, node_name: str, request: Any, deadline: float) -> Any:
-        future = client.call_async(request)
-        try:
-            return self._wait_future(future, max(deadline - time.monotonic(), 0.01))
-        except TimeoutError:
-            client.remove_pending_request(future)
-            raise self._timed_out(node_name) from None
-
-    def _call_with_retries(
-        self, client: Any, node_name: str, request: Any, deadline: float
-    ) -> Any:
-        """Send a request that changes nothing, re-sending with a doubling timeout."""
-        attempt_s = FIRST_ATTEMPT_S
-        while True:
-            future = client.call_async(request)
-            remaining = deadline - time.monotonic()
-            try:
-                return self._wait_future(future, min(attempt_s, max(remaining, 0.01)))
-            except TimeoutError:
-                client.remove_pending_request(future)
-                if time.monotonic() >= deadline:
-                    raise self._timed_out(node_name) from None
-                attempt_s *= 2
+        """Return whether the node answers a parameter request within `timeout`."""
+        return self.calls.answers(node_name, timeout=timeout)
 
     def list_parameters(self, node_name: str, prefixes: Sequence[str] = ()) -> list[str]:
         """Return the names of the node's parameters (optionally under `prefixes`)."""
-        request = ListParameters.Request(prefixes=list(prefixes), depth=0)
-        return list(self._call(node_name, "list_parameters", request).result.names)
+        return self.calls.list_parameters(node_name, prefixes)
+
+    def describe_parameters(self, node_name: str, names: Sequence[str]) -> list[Descriptor]:
+        """Return the descriptors of `names`."""
+        return self.calls.describe_parameters(node_name, names)
 
     def get_parameters(self, node_name: str, names: Sequence[str]) -> list[ParamValue]:
         """Return the values of `names` (an unknown name yields no value or NOT_SET)."""
-        response = self._call(node_name, "get_parameters", GetParameters.Request(names=names))
-        return [value_from_msg(v) for v in response.values]
+        values = self.calls.get_parameters(node_name, names)
+        self.journal.learn(node_name, names, values, self.calls.reply_writers(node_name))
+        return values
 
     def set_parameters(
         self, node_name: str, values: Sequence[tuple[str, ParamValue]]
     ) -> list[SetResult]:
         """Set each parameter on its own (not atomically); return one result per parameter.
 
-        The request is written to the lab's parameter journal first (with the values it
-        replaces), so that the node's /parameter_events can be traced to this door.
+        The request is written to the lab's parameter journal first, with the values it
+        replaces, so that the node's /parameter_events can be traced to this door. Those
+        values are known without a request (set_journal.py), but for a parameter this client
+        has never read nor seen changed since the node started: that one is read first.
         """
-        params = [Parameter(name=n, value=value_to_msg(v)) for n, v in values]
-        marks = self._journal_request(node_name, values)
-        response = self._call(
-            node_name, "set_parameters", SetParameters.Request(parameters=params)
-        )
-        results = [
-            SetResult(r.successful, r.reason, name)
-            for r, (name, _v) in zip(response.results, values, strict=False)
-        ]
-        refused = [m for m, r in zip(marks, results, strict=False) if not r.successful]
-        for mark in refused:
-            param_journal.append(self._domain_id, {"t": "failed", "id": mark})
+        names = [name for name, _v in values]
+        writers = self.calls.reply_writers(node_name)
+        old = self.journal.old_values(node_name, names, writers)
+        unknown = [name for name in names if name not in old]
+        if unknown:
+            old.update(self._read_old(node_name, unknown))
+            writers = writers or self.calls.reply_writers(node_name)
+        marks = self.journal.record_request(node_name, values, old, writers)
+        try:
+            results = self.calls.set_parameters(node_name, values, writers=writers or None)
+        except ServiceCallError:
+            self.journal.record_lost(node_name, names)
+            raise
+        self.journal.record_answer(node_name, values, marks, results)
         return results
 
-    def _journal_request(
-        self, node_name: str, values: Sequence[tuple[str, ParamValue]]
-    ) -> list[str]:
-        """Record a set request and the values it replaces; return each record's id."""
-        names = [n for n, _v in values]
+    def _read_old(self, node_name: str, names: Sequence[str]) -> dict[str, Stored | None]:
+        """Read values nothing else knows from the node (None: no answer, or no such name)."""
         try:
-            old = self.get_parameters(node_name, names)
+            read = self.get_parameters(node_name, names)
         except ServiceCallError:
-            old = []
-        door = param_journal.current_door()
-        marks = []
-        for index, (name, value) in enumerate(values):
-            mark = f"{os.getpid()}-{time.monotonic_ns()}-{index}"
-            before = old[index] if index < len(old) else None
-            param_journal.append(
-                self._domain_id,
-                {
-                    "t": "set",
-                    "id": mark,
-                    "door": door,
-                    "node": node_name,
-                    "name": name,
-                    "value": journal_value(value),
-                    "old": journal_value(before) if before is not None else None,
-                },
-            )
-            marks.append(mark)
-        return marks
-
-    def describe_parameters(self, node_name: str, names: Sequence[str]) -> list[Descriptor]:
-        """Return the descriptors of `names`."""
-        request = DescribeParameters.Request(names=list(names))
-        response = self._call(node_name, "describe_parameters", request)
-        return [_descriptor(d) for d in response.descriptors]
-
-    def age(self) -> float:
-        """Return how long this client node has been discovering the graph, in seconds."""
-        return time.monotonic() - self._born
+            read = []
+        if len(read) != len(names):  # a get answers nothing if one name is undeclared
+            return dict.fromkeys(names)
+        return {name: journal_value(value) for name, value in zip(names, read, strict=True)}
 
     def close(self) -> None:
         """Destroy the cached service clients."""
-        with self._lock:
-            for client in self._clients.values():
-                self.node.destroy_client(client)
-            self._clients.clear()
-            self._proven.clear()
+        self.calls.close()

@@ -16,10 +16,10 @@ import time
 from collections.abc import Mapping
 from pathlib import Path
 
-from ...core import procfs
+from ...core.host import procfs
 from ...core.waiting import wait_until
 from ...processes.children import CLONE_ENV, OWNER_ENV, owner_tag
-from .discovery import of_domain_here
+from .participants import of_domain_here
 from .wire import (
     DaemonUnavailable,
     connect,

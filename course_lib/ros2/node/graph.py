@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .client import YOUNG_CLIENT_S
+from .graph_client import YOUNG_CLIENT_S
 
 __all__ = ["COURSE_CLIENTS", "lookup", "own_prefix", "services", "topics", "types_of"]
 
@@ -43,7 +43,10 @@ def types_of(
     """Return the types of topic (or service, `kind="service"`) `name`, or None if the graph
     has none of that name; a young client waits for discovery first (`lookup`)."""
     listing = services if kind == "service" else topics
-    return lookup(client, lambda: dict(listing(client, include_hidden=include_hidden)).get(name))
+    found: list[str] | None = lookup(
+        client, lambda: dict(listing(client, include_hidden=include_hidden)).get(name)
+    )
+    return found
 
 
 def lookup(client: Any, find: Any) -> Any:

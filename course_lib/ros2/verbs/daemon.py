@@ -7,7 +7,8 @@ import os
 from typing import Any
 
 from ..node.connect import daemon_running, start_detached, stop_daemon
-from .context import Context
+from ..verbkit.context import Context
+from ..verbkit.registry import command, verb
 
 __all__ = ["daemon_start", "daemon_start_arguments", "daemon_status", "daemon_stop"]
 
@@ -22,10 +23,14 @@ NO_DEBUG = (
 )
 
 
+command("daemon", "Various daemon related sub-commands")
+
+
 def _domain(ctx: Context) -> str | None:
     return (ctx.env.get("ROS_DOMAIN_ID") or os.environ.get("ROS_DOMAIN_ID") or "").strip() or None
 
 
+@verb("daemon", "status", "Output the status of the daemon", graph=False)
 def daemon_status(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 daemon status`."""
     domain = _domain(ctx)
@@ -34,6 +39,18 @@ def daemon_status(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+def daemon_start_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of `ros2 daemon start`."""
+    parser.add_argument("--debug", "-d", action="store_true", help="Print debug messages")
+
+
+@verb(
+    "daemon",
+    "start",
+    "Start the daemon if it isn't running",
+    arguments=daemon_start_arguments,
+    graph=False,
+)
 def daemon_start(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 daemon start`: start this domain's daemon unless it runs."""
     domain = _domain(ctx)
@@ -55,6 +72,7 @@ def daemon_start(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+@verb("daemon", "stop", "Stop the daemon if it is running", graph=False)
 def daemon_stop(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 daemon stop`: stop this domain's daemon and wait until it is gone."""
     domain = _domain(ctx)
@@ -64,8 +82,3 @@ def daemon_stop(args: argparse.Namespace, ctx: Context) -> Any:
         return str(exc)
     ctx.console.out("The daemon has been stopped\n" if stopped else "The daemon is not running\n")
     return 0
-
-
-def daemon_start_arguments(parser: argparse.ArgumentParser) -> None:
-    """Arguments of `ros2 daemon start`."""
-    parser.add_argument("--debug", "-d", action="store_true", help="Print debug messages")

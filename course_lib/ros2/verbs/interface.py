@@ -10,7 +10,8 @@ from typing import Any
 from ...core import ament
 from ..interface_index import interface_packages, interface_path, interfaces, prefixes
 from ..interface_text import show_lines
-from .context import Context
+from ..verbkit.context import Context
+from ..verbkit.registry import command, verb
 
 __all__ = [
     "list_",
@@ -32,6 +33,9 @@ _ONLY = (
     ("-a", "--only-actions", "action", "action"),
 )
 _TYPE_HELP = "Show an interface definition (e.g. 'example_interfaces/msg/String')"
+
+
+command("interface", "Show information about ROS interfaces")
 
 
 def _roots(ctx: Context) -> list[Path]:
@@ -67,7 +71,13 @@ def packages_arguments(parser: Parser) -> None:
 class _ReadStdinPipe(argparse.Action):
     """`-` reads the type name from a pipe, as ros2interface's show does."""
 
-    def __call__(self, parser, namespace, values, option_string=None):  # type: ignore[no-untyped-def]
+    def __call__(
+        self,
+        parser: argparse.ArgumentParser,
+        namespace: argparse.Namespace,
+        values: Any,
+        option_string: str | None = None,
+    ) -> None:
         if values == "-":
             if sys.stdin.isatty():
                 parser.error("expected stdin pipe")
@@ -108,6 +118,13 @@ def proto_arguments(parser: Parser) -> None:
     )
 
 
+@verb(
+    "interface",
+    "list",
+    "List all interface types available",
+    arguments=list_arguments,
+    graph=False,
+)
 def list_(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 interface list [-m] [-s] [-a]`."""
     roots = _roots(ctx)
@@ -122,6 +139,13 @@ def list_(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+@verb(
+    "interface",
+    "package",
+    "Output a list of available interface types within one package",
+    arguments=package_arguments,
+    graph=False,
+)
 def package(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 interface package <package> [-m] [-s] [-a]` (sorted; the real order is random)."""
     roots = _roots(ctx)
@@ -136,6 +160,13 @@ def package(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+@verb(
+    "interface",
+    "packages",
+    "Output a list of packages that provide interfaces",
+    arguments=packages_arguments,
+    graph=False,
+)
 def packages(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 interface packages [-m|-s|-a]`."""
     roots = _roots(ctx)
@@ -145,6 +176,9 @@ def packages(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+@verb(
+    "interface", "show", "Output the interface definition", arguments=show_arguments, graph=False
+)
 def show(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 interface show <type> [--all-comments|--no-comments]`."""
     roots = _roots(ctx)
@@ -163,6 +197,9 @@ def show(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+@verb(
+    "interface", "proto", "Output an interface prototype", arguments=proto_arguments, graph=False
+)
 def proto(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 interface proto <type> [--no-quotes]`: a default instance as YAML."""
     from ..msgfill import import_type

@@ -5,7 +5,8 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping
 
-from .context import Context
+from ..verbkit.context import Context
+from ..verbkit.registry import raw_command
 
 __all__ = ["launch_env", "main"]
 
@@ -39,6 +40,7 @@ def launch_env(argv: list[str], caller: Mapping[str, str], underlaid: Mapping[st
     return env
 
 
+@raw_command("launch", "Run a launch file")
 def main(argv: list[str], ctx: Context) -> int:
     """Run `ros2 launch <argv>` (it prints straight to this process)."""
     try:

@@ -6,12 +6,16 @@ import argparse
 from typing import Any
 
 from .. import render
-from . import options
-from .context import Context, settled_client
+from ..verbkit import options
+from ..verbkit.context import Context, settled_client
+from ..verbkit.registry import command, verb
 
 __all__ = ["node_info", "node_info_arguments", "node_list", "node_list_arguments"]
 
 Parser = argparse.ArgumentParser
+
+
+command("node", "Various node related sub-commands")
 
 
 def node_list_arguments(parser: Parser) -> None:
@@ -39,6 +43,7 @@ def node_info_arguments(parser: Parser) -> None:
     )
 
 
+@verb("node", "list", "Output a list of available nodes", arguments=node_list_arguments)
 def node_list(args: argparse.Namespace, ctx: Context) -> int:
     """`ros2 node list [-a] [-c]`."""
     names = settled_client(args, ctx).node_names(include_hidden=args.all)
@@ -49,6 +54,7 @@ def node_list(args: argparse.Namespace, ctx: Context) -> int:
     )
 
 
+@verb("node", "info", "Output information about a node", arguments=node_info_arguments)
 def node_info(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 node info <node>`."""
     client = settled_client(args, ctx)

@@ -6,8 +6,9 @@ import argparse
 from typing import Any
 
 from ..node.graph import services, types_of
-from . import options
-from .context import Context
+from ..verbkit import options
+from ..verbkit.context import Context
+from ..verbkit.registry import command, verb
 
 __all__ = [
     "command_arguments",
@@ -29,6 +30,9 @@ _COUNT_HELP = "Only display the number of services discovered"
 def command_arguments(parser: Parser) -> None:
     """The option `ros2 service` itself takes before its verb."""
     parser.add_argument("--include-hidden-services", action="store_true", help=_HIDDEN_HELP)
+
+
+command("service", "Various service related sub-commands", options=command_arguments)
 
 
 def list_arguments(parser: Parser) -> None:
@@ -80,6 +84,7 @@ def _types_of(args: argparse.Namespace, ctx: Context) -> list[str] | None:
     )  # fmt: skip
 
 
+@verb("service", "list", "Output a list of available services", arguments=list_arguments)
 def list_(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 service list [-t] [-c] [--include-hidden-services]`."""
     found = _services(args, ctx)
@@ -91,6 +96,7 @@ def list_(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+@verb("service", "type", "Output a service's type", arguments=type_arguments)
 def type_(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 service type <service>`: its type, or exit 1 silently."""
     types = _types_of(args, ctx)
@@ -100,6 +106,12 @@ def type_(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+@verb(
+    "service",
+    "find",
+    "Output a list of available services of a given type",
+    arguments=find_arguments,
+)
 def find(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 service find <type> [-c]`."""
     names = [name for name, types in _services(args, ctx) if args.service_type in types]
@@ -108,6 +120,7 @@ def find(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+@verb("service", "info", "Print information about a service", arguments=info_arguments)
 def info(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 service info <service>`: type, clients and servers."""
     types = _types_of(args, ctx)

@@ -11,7 +11,8 @@ from typing import Any
 import yaml
 
 from ..msgfill import import_type, set_message_fields
-from .context import Context
+from ..verbkit.context import Context
+from ..verbkit.registry import verb
 
 __all__ = ["add_arguments", "main"]
 
@@ -60,6 +61,7 @@ def _wait_for_server(cli: Any, ctx: Context) -> bool:
     return True
 
 
+@verb("service", "call", "Call a service", arguments=add_arguments)
 def main(args: argparse.Namespace, ctx: Context) -> Any:
     """Fill the request from YAML, wait for the server, call (at --rate), print both."""
     if args.rate is not None and args.rate <= 0:

@@ -11,8 +11,9 @@ from typing import Any
 from .. import render
 from ..node.discovery import NAME_WAIT_S, UNKNOWN_NODE
 from ..node.graph import topics, types_of
-from . import options
-from .context import Context, settled_client
+from ..verbkit import options
+from ..verbkit.context import Context, settled_client
+from ..verbkit.registry import command, verb
 
 __all__ = [
     "bw",
@@ -90,6 +91,7 @@ def _all_named(node: Any, name: str) -> bool:
     return all(info.node_name != UNKNOWN_NODE for info in infos)
 
 
+@verb("topic", "info", "Print information about a topic", arguments=info_arguments)
 def info(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 topic info <topic> [-v]`."""
     types = types_of(ctx.client, args.topic_name, include_hidden=True)
@@ -112,6 +114,7 @@ def info(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+@verb("topic", "type", "Print a topic's type", arguments=type_arguments)
 def type_(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 topic type <topic>`: its type(s), or exit 1 silently."""
     types = types_of(ctx.client, args.topic_name, include_hidden=args.include_hidden_topics)
@@ -121,6 +124,9 @@ def type_(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+@verb(
+    "topic", "find", "Output a list of available topics of a given type", arguments=find_arguments
+)
 def find(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 topic find <type> [-c]`."""
     ctx.client.settle()
@@ -160,13 +166,14 @@ def _wait_for_type(ctx: Context, topic: str) -> str | None:
     return None
 
 
+@verb("topic", "bw", "Display bandwidth used by topic", arguments=bw_arguments)
 def bw(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 topic bw <topic> [-w N]`: serialized bytes per second, printed each second."""
     if args.use_sim_time:
         return "`ros2 topic bw --use-sim-time` is not part of this course: it measures wall time."
     from rclpy.qos import qos_profile_sensor_data
 
-    from .topic_stream import import_message
+    from ..verbkit.topic_types import import_message
 
     type_name = _wait_for_type(ctx, args.topic)
     if type_name is None:
@@ -202,6 +209,22 @@ def _stamp_ns(msg: Any) -> int:
     return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
 
 
+def delay_arguments(parser: Parser) -> None:
+    """Arguments of `ros2 topic delay`."""
+    parser.add_argument("topic", help="Topic name to calculate the delay for")
+    parser.add_argument(
+        "--window",
+        "-w",
+        type=options.positive_int,
+        default=10000,
+        help="window size, in # of messages, for calculating rate, string to (default: 10000)",
+    )
+    options.direct(parser)
+
+
+@verb(
+    "topic", "delay", "Display delay of topic from timestamp in header", arguments=delay_arguments
+)
 def delay(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 topic delay <topic> [-w N]`: how old header stamps are on arrival, each second
     from the subscription on until Ctrl-C (a type without header: an error at its first
@@ -211,7 +234,7 @@ def delay(args: argparse.Namespace, ctx: Context) -> Any:
     from rclpy.qos import qos_profile_sensor_data
 
     from ..delay_window import DelayWindow
-    from .topic_stream import import_message
+    from ..verbkit.topic_types import import_message
 
     type_name = _wait_for_type(ctx, args.topic)
     if type_name is None:
@@ -238,24 +261,14 @@ def delay(args: argparse.Namespace, ctx: Context) -> Any:
     return 2
 
 
-def delay_arguments(parser: Parser) -> None:
-    """Arguments of `ros2 topic delay`."""
-    parser.add_argument("topic", help="Topic name to calculate the delay for")
-    parser.add_argument(
-        "--window",
-        "-w",
-        type=options.positive_int,
-        default=10000,
-        help="window size, in # of messages, for calculating rate, string to (default: 10000)",
-    )
-    options.direct(parser)
-
-
 def topic_command_arguments(parser: Parser) -> None:
     """The option `ros2 topic` itself takes before its verb."""
     parser.add_argument(
         "--include-hidden-topics", action="store_true", help="Consider hidden topics as well"
     )
+
+
+command("topic", "Various topic related sub-commands", options=topic_command_arguments)
 
 
 def topic_list_arguments(parser: Parser) -> None:
@@ -278,6 +291,7 @@ def topic_list_arguments(parser: Parser) -> None:
     )
 
 
+@verb("topic", "list", "Output a list of available topics", arguments=topic_list_arguments)
 def topic_list(args: argparse.Namespace, ctx: Context) -> int:
     """`ros2 topic list [-t] [-c] [-v]`."""
     client = settled_client(args, ctx)

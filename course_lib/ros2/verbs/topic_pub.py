@@ -6,6 +6,7 @@ import argparse
 import os
 import sys
 import time
+from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
 
@@ -13,8 +14,9 @@ import yaml
 
 from ..msgfill import import_type, set_message_fields
 from ..node.delivery import keep_until_acknowledged
-from . import options
-from .context import Context
+from ..verbkit import options
+from ..verbkit.context import Context
+from ..verbkit.registry import verb
 
 __all__ = ["add_arguments", "main"]
 
@@ -94,7 +96,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 @contextmanager
-def _publishing_node(args: argparse.Namespace, ctx: Context):  # type: ignore[no-untyped-def]
+def _publishing_node(args: argparse.Namespace, ctx: Context) -> Iterator[Any]:
     """Yield the node to publish from: the client node, or one named by -n / using sim time."""
     shared = ctx.client.node
     if args.node_name is None and not args.use_sim_time:
@@ -133,6 +135,7 @@ def _wait_for_subscribers(pub: Any, wanted: int, max_wait: float | None, ctx: Co
     return None
 
 
+@verb("topic", "pub", "Publish a message to a topic", arguments=add_arguments)
 def main(args: argparse.Namespace, ctx: Context) -> Any:
     """Publish the message once, N times or at a rate until Ctrl-C."""
     from ..node.qos import qos_from_args

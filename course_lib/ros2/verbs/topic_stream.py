@@ -11,67 +11,19 @@ from typing import Any
 from ..msgcsv import message_to_csv
 from ..msgyaml import message_to_yaml
 from ..node.client import YOUNG_CLIENT_S
-from . import options
-from .context import Context
+from ..verbkit import options
+from ..verbkit.context import Context
+from ..verbkit.registry import verb
+from ..verbkit.topic_types import expand_topic, import_message, message_class, type_of
 
 __all__ = [
-    "import_message",
     "topic_echo",
     "topic_echo_arguments",
     "topic_hz",
     "topic_hz_arguments",
-    "type_of",
 ]
 
 _TICK_S = 0.1
-
-
-def _expand(topic: str) -> str:
-    from rclpy.expand_topic_name import expand_topic_name
-
-    return expand_topic_name(topic, "ros2cli", "/")
-
-
-def type_of(ctx: Context, topic: str, *, wait: bool = True) -> str | None:
-    """Return the topic's one type (None if the graph has no such topic). With `wait`, a
-    young client first gives discovery its time; a graph known whole that lacks the topic
-    answers at once, as "Node not found" does (RosClient.wait_for)."""
-    name = _expand(topic)
-    found: list[str] = []
-
-    def look() -> bool:
-        for n, types in ctx.client.topics(include_hidden=True):
-            if n == name:
-                if len(types) > 1:
-                    raise RuntimeError(
-                        f"Cannot echo topic '{topic}', as it contains more than one type: "
-                        f"[{', '.join(types)}]"
-                    )
-                found.append(types[0])
-                return True
-        return False
-
-    if wait:
-        ctx.client.wait_for(look, timeout=0)
-    else:
-        look()
-    return found[0] if found else None
-
-
-def _import_message(type_name: str) -> Any:
-    import importlib
-
-    package, kind, name = type_name.split("/")
-    return getattr(importlib.import_module(f"{package}.{kind}"), name)
-
-
-def import_message(type_name: str) -> Any:
-    """Return the class of a topic's type, or raise ros2topic's error if it cannot be
-    imported here (a package this environment lacks)."""
-    try:
-        return _import_message(type_name)
-    except (AttributeError, ModuleNotFoundError, ValueError):
-        raise RuntimeError(f"The message type '{type_name}' is invalid") from None
 
 
 _OVERRIDES = (
@@ -116,7 +68,7 @@ def _qos(ctx: Context, topic: str, args: argparse.Namespace) -> Any:
 def _resolve(ctx: Context, args: argparse.Namespace) -> Any:
     if args.message_type is not None:
         try:
-            return _import_message(args.message_type)
+            return message_class(args.message_type)
         except (AttributeError, ModuleNotFoundError, ValueError):
             raise RuntimeError("The passed message type is invalid") from None
     type_name = type_of(ctx, args.topic_name)
@@ -182,113 +134,6 @@ def _lost(ctx: Context) -> Any:
         )
 
     return SubscriptionEventCallbacks(message_lost=report)
-
-
-def topic_echo(args: argparse.Namespace, ctx: Context) -> Any:
-    """`ros2 topic echo <topic> [type] [--once] [--field F] [--timeout N] [--filter E] [-i]`."""
-    if args.use_sim_time and args.timeout:
-        return "`ros2 topic echo --use-sim-time --timeout` is not part of this course."
-    keep = _filter(args.filter_expr)
-    path = None
-    if args.field is not None:
-        path = [p for p in args.field.split(".") if p]
-        if not path:
-            return f"Invalid field value '{args.field}'"
-    msg_class = _resolve(ctx, args)
-    topic = _expand(args.topic_name)
-    inbox: queue.Queue[Any] = queue.Queue()
-    node = ctx.client.node
-    events = None if args.no_lost_messages else _lost(ctx)
-    sub = node.create_subscription(
-        msg_class,
-        topic,
-        lambda msg, info: inbox.put((msg, info)),
-        _qos(ctx, topic, args),
-        event_callbacks=events,
-        raw=args.raw,
-    )
-    deadline = time.monotonic() + args.timeout if args.timeout else math.inf
-    try:
-        while not ctx.console.cancelled.is_set() and time.monotonic() < deadline:
-            try:
-                msg, info = inbox.get(timeout=min(_TICK_S, max(0.0, deadline - time.monotonic())))
-            except queue.Empty:
-                continue
-            shown = _field(msg, path) if path else msg
-            if keep is not None and not keep(shown):
-                continue
-            ctx.console.out(_format(shown, info, args))
-            if args.once:
-                break
-    finally:
-        node.destroy_subscription(sub)
-    return 2 if ctx.console.cancelled.is_set() else 0  # Ctrl-C: ros2cli's exit code
-
-
-def _info_text(info: Any) -> str:
-    import yaml
-
-    return yaml.dump(dict(info)) + "---\n"
-
-
-def _hz_line(times: list[float]) -> str:
-    n = len(times)
-    mean = sum(times) / n
-    rate = 1.0 / mean if mean > 0 else 0.0
-    std = math.sqrt(sum((x - mean) ** 2 for x in times) / n)
-    return (
-        f"average rate: {rate:.3f}\n\tmin: {min(times):.3f}s max: {max(times):.3f}s "
-        f"std dev: {std:.5f}s window: {n}\n"
-    )
-
-
-def topic_hz(args: argparse.Namespace, ctx: Context) -> Any:
-    """`ros2 topic hz <topic> [--window N] [--filter E] [--wall-time]`: rate each second.
-
-    The course's client node runs on wall time, so the rate is wall time with or without
-    `--wall-time` (as the real tool's without simulated time).
-    """
-    from rclpy.qos import qos_profile_sensor_data
-
-    if args.use_sim_time:
-        return "`ros2 topic hz --use-sim-time` is not part of this course: it measures wall time."
-    keep = _filter(args.filter_expr)
-    # hz keeps waiting for a missing topic, so it warns at once (as ros2topic's blocking
-    # get_msg_class); only a young client first gives discovery its time.
-    young = max(0.0, YOUNG_CLIENT_S - ctx.client.age())
-    type_name = type_of(ctx, args.topic_name, wait=young > 0)
-    if type_name is None:
-        ctx.console.out(
-            f"WARNING: topic [{args.topic_name}] does not appear to be published yet\n"
-        )
-    while type_name is None:
-        if ctx.console.cancelled.wait(_TICK_S):
-            return 2
-        type_name = type_of(ctx, args.topic_name, wait=False)
-    stamps: queue.Queue[float] = queue.Queue()
-    node = ctx.client.node
-    sub = node.create_subscription(
-        import_message(type_name),
-        _expand(args.topic_name),
-        lambda m: (keep is None or keep(m)) and stamps.put(time.monotonic()),
-        qos_profile_sensor_data,
-    )
-    deltas: list[float] = []
-    last: float | None = None
-    printed = time.monotonic()
-    try:
-        while not ctx.console.cancelled.wait(_TICK_S):
-            while not stamps.empty():
-                stamp = stamps.get()
-                if last is not None:
-                    deltas = [*deltas, stamp - last][-args.window_size :]
-                last = stamp
-            if deltas and last is not None and last >= printed + 1.0:
-                ctx.console.out(_hz_line(deltas))
-                printed = last
-    finally:
-        node.destroy_subscription(sub)
-    return 2 if ctx.console.cancelled.is_set() else 0  # Ctrl-C: ros2cli's exit code
 
 
 def topic_echo_arguments(parser: argparse.ArgumentParser) -> None:
@@ -369,6 +214,65 @@ def topic_echo_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
+@verb("topic", "echo", "Output messages from a topic", arguments=topic_echo_arguments)
+def topic_echo(args: argparse.Namespace, ctx: Context) -> Any:
+    """`ros2 topic echo <topic> [type] [--once] [--field F] [--timeout N] [--filter E] [-i]`."""
+    if args.use_sim_time and args.timeout:
+        return "`ros2 topic echo --use-sim-time --timeout` is not part of this course."
+    keep = _filter(args.filter_expr)
+    path = None
+    if args.field is not None:
+        path = [p for p in args.field.split(".") if p]
+        if not path:
+            return f"Invalid field value '{args.field}'"
+    msg_class = _resolve(ctx, args)
+    topic = expand_topic(args.topic_name)
+    inbox: queue.Queue[Any] = queue.Queue()
+    node = ctx.client.node
+    events = None if args.no_lost_messages else _lost(ctx)
+    sub = node.create_subscription(
+        msg_class,
+        topic,
+        lambda msg, info: inbox.put((msg, info)),
+        _qos(ctx, topic, args),
+        event_callbacks=events,
+        raw=args.raw,
+    )
+    deadline = time.monotonic() + args.timeout if args.timeout else math.inf
+    try:
+        while not ctx.console.cancelled.is_set() and time.monotonic() < deadline:
+            try:
+                msg, info = inbox.get(timeout=min(_TICK_S, max(0.0, deadline - time.monotonic())))
+            except queue.Empty:
+                continue
+            shown = _field(msg, path) if path else msg
+            if keep is not None and not keep(shown):
+                continue
+            ctx.console.out(_format(shown, info, args))
+            if args.once:
+                break
+    finally:
+        node.destroy_subscription(sub)
+    return 2 if ctx.console.cancelled.is_set() else 0  # Ctrl-C: ros2cli's exit code
+
+
+def _info_text(info: Any) -> str:
+    import yaml
+
+    return yaml.dump(dict(info)) + "---\n"
+
+
+def _hz_line(times: list[float]) -> str:
+    n = len(times)
+    mean = sum(times) / n
+    rate = 1.0 / mean if mean > 0 else 0.0
+    std = math.sqrt(sum((x - mean) ** 2 for x in times) / n)
+    return (
+        f"average rate: {rate:.3f}\n\tmin: {min(times):.3f}s max: {max(times):.3f}s "
+        f"std dev: {std:.5f}s window: {n}\n"
+    )
+
+
 def topic_hz_arguments(parser: argparse.ArgumentParser) -> None:
     """Arguments of `ros2 topic hz`."""
     parser.add_argument("topic_name", help="Name of the ROS topic to listen to (e.g. '/chatter')")
@@ -397,3 +301,58 @@ def topic_hz_arguments(parser: argparse.ArgumentParser) -> None:
         "during simulation",
     )
     options.direct(parser)
+
+
+@verb("topic", "hz", "Print the average publishing rate to screen", arguments=topic_hz_arguments)
+def topic_hz(args: argparse.Namespace, ctx: Context) -> Any:
+    """`ros2 topic hz <topic> [--window N] [--filter E] [--wall-time]`: rate each second.
+
+    The course's client node runs on wall time, so the rate is wall time with or without
+    `--wall-time` (as the real tool's without simulated time).
+    """
+    from rclpy.qos import qos_profile_sensor_data
+
+    if args.use_sim_time:
+        return "`ros2 topic hz --use-sim-time` is not part of this course: it measures wall time."
+    keep = _filter(args.filter_expr)
+    # hz keeps waiting for a missing topic, so it warns at once (as ros2topic's blocking
+    # get_msg_class); only a young client first gives discovery its time.
+    young = max(0.0, YOUNG_CLIENT_S - ctx.client.age())
+    type_name = type_of(ctx, args.topic_name, wait=young > 0)
+    if type_name is None:
+        ctx.console.out(
+            f"WARNING: topic [{args.topic_name}] does not appear to be published yet\n"
+        )
+    while type_name is None:
+        if ctx.console.cancelled.wait(_TICK_S):
+            return 2
+        type_name = type_of(ctx, args.topic_name, wait=False)
+    stamps: queue.Queue[float] = queue.Queue()
+    node = ctx.client.node
+
+    def on_message(message: Any) -> None:
+        if keep is None or keep(message):
+            stamps.put(time.monotonic())
+
+    sub = node.create_subscription(
+        import_message(type_name),
+        expand_topic(args.topic_name),
+        on_message,
+        qos_profile_sensor_data,
+    )
+    deltas: list[float] = []
+    last: float | None = None
+    printed = time.monotonic()
+    try:
+        while not ctx.console.cancelled.wait(_TICK_S):
+            while not stamps.empty():
+                stamp = stamps.get()
+                if last is not None:
+                    deltas = [*deltas, stamp - last][-args.window_size :]
+                last = stamp
+            if deltas and last is not None and last >= printed + 1.0:
+                ctx.console.out(_hz_line(deltas))
+                printed = last
+    finally:
+        node.destroy_subscription(sub)
+    return 2 if ctx.console.cancelled.is_set() else 0  # Ctrl-C: ros2cli's exit code

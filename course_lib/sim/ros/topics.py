@@ -16,8 +16,7 @@ def reset_done_qos() -> Any:
     """Return RESET_DONE_TOPIC's QoS, the same on both sides: transient local, the last ten
     numbers kept. A kernel sees the simulation's publisher before the simulation has matched
     the kernel's subscription (each side discovers the other on its own), and a volatile
-    reply sent in between reached no one (ci64: a world restarted on a loaded host, "the
-    simulation did not reset within 5 s")."""
+    reply sent in between would reach no one: the kernel would wait for a reset already done."""
     from rclpy.qos import DurabilityPolicy, QoSProfile
 
     return QoSProfile(depth=10, durability=DurabilityPolicy.TRANSIENT_LOCAL)

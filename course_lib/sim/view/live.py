@@ -44,7 +44,7 @@ class ServerWindow:
 
     def __init__(self, zmq_url: str, timeout_ms: int = _TIMEOUT_MS) -> None:
         self.zmq_url = zmq_url
-        self.socket = zmq.Context.instance().socket(zmq.REQ)
+        self.socket: zmq.Socket[bytes] = zmq.Context.instance().socket(zmq.REQ)
         self.socket.setsockopt(zmq.RCVTIMEO, timeout_ms)
         self.socket.setsockopt(zmq.SNDTIMEO, timeout_ms)
         self.socket.setsockopt(zmq.LINGER, 0)

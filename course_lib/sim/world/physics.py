@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -15,6 +16,12 @@ from .model import BASE_BODY, WHEEL_ACTUATORS, WHEEL_JOINTS, build_model, scan_s
 __all__ = ["ImuReading", "Simulation"]
 
 _SENSORS_OFF = int(mujoco.mjtDisableBit.mjDSBL_SENSOR)
+
+
+def _vector(values: Any) -> tuple[float, float, float]:
+    """Return three numbers of a sensor array as floats."""
+    x, y, z = (float(v) for v in values)
+    return x, y, z
 
 
 @dataclass(frozen=True)
@@ -146,11 +153,8 @@ class Simulation:
         a, g = self._imu["imu_accel"], self._imu["imu_gyro"]
         quat = np.zeros(4)
         mujoco.mju_mat2Quat(quat, self.data.site_xmat[self._imu_site])
-        return ImuReading(
-            tuple(float(x) for x in quat),  # type: ignore[arg-type]
-            tuple(float(x) for x in s[g : g + 3]),  # type: ignore[arg-type]
-            tuple(float(x) for x in s[a : a + 3]),  # type: ignore[arg-type]
-        )
+        w, x, y, z = (float(q) for q in quat)
+        return ImuReading((w, x, y, z), _vector(s[g : g + 3]), _vector(s[a : a + 3]))
 
     def warnings(self) -> dict[str, int]:
         """Return MuJoCo's warning counters that are not zero, by name."""

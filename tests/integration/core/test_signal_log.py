@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.core.signalling import LOG_ENV
+from course_lib.core.host.signalling import LOG_ENV
 from course_lib.processes.children import spawn
 
 

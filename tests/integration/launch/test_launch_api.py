@@ -59,7 +59,7 @@ def test_a_notebook_launch_is_no_node_starting_but_its_nodes_are(
     """A command run moments after `%ros2 launch` waits for the nodes the launch starts, not
     for the launch's own process, which never joins DDS (it held every command for seconds,
     until it was 6 s old)."""
-    from course_lib.ros2.node.discovery import domain_newcomers
+    from course_lib.ros2.node.participants import domain_newcomers
 
     handle = launch(
         "parameter_tests", "param_vel.launch.py", session=launch_session, env=launch_env

@@ -13,7 +13,7 @@ import pytest
 
 from course_lib.config.course import load_course_settings
 from course_lib.lessons import Lesson
-from course_lib.lessons.checks import run_checks
+from course_lib.lessons.catalogue import run_checks
 from course_lib.notebook import start_world
 from course_lib.ros2.api import nodes_and_params as api
 from course_lib.session.session import get_session

@@ -6,10 +6,10 @@ from collections.abc import Iterator
 
 import pytest
 from jupyter_kernels import Kernel
+from suite_env import independent_env
 
 from course_lib.core.param_journal import journal_path
 from course_lib.processes.domain import DOMAIN_ENV, lease_domain
-from course_lib.tools.testing import independent_env
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 

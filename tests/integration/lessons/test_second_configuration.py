@@ -18,6 +18,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from suite_env import independent_env
 
 from course_lib.core.paths import (
     CONFIG_DIR,
@@ -27,7 +28,6 @@ from course_lib.core.paths import (
     REPO_ROOT,
 )
 from course_lib.lessons.texts import TEMPLATES
-from course_lib.tools.testing import independent_env
 
 pytestmark = [pytest.mark.ros, pytest.mark.sim, pytest.mark.slow]
 

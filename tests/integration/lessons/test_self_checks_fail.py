@@ -64,7 +64,7 @@ def test_lesson1_fails_without_jazzy_mujoco_or_meshcat(tmp_path: Path) -> None:
     (tmp_path / "yaml").symlink_to(Path(yaml.__file__).parent)
     code = (
         "import sys; sys.path[:0] = [sys.argv[1]]\n"
-        "from course_lib.lessons.checks import installed_checks\n"
+        "from course_lib.lessons.catalogue.l01_setup_check import installed_checks\n"
         "from course_lib.lessons.environment import versions\n"
         "print([c.passed for c in installed_checks(versions())])\n"
     )
@@ -127,7 +127,7 @@ def test_lesson2_passes_when_only_a_ghost_of_its_node_is_listed(
     """A node killed without leaving the graph stays listed until its discovery lease runs out
     (longer on a busy host than the check waits): no live process holds it, so it is gone."""
     from course_lib.lab import drivers
-    from course_lib.lessons import checks
+    from course_lib.lessons.catalogue.shared import namesakes
 
     lesson = start(2)
     lesson.run("parameter_tests", "param_vel")
@@ -139,7 +139,7 @@ def test_lesson2_passes_when_only_a_ghost_of_its_node_is_listed(
     node.wait(10)
     monkeypatch.setattr(drivers, "GONE_WAIT_S", 0.0)  # as if the lease outlived the wait
     assert "/param_vel_node" in api.node_list(), "no ghost to test (the lease ran out)"
-    assert checks._namesakes("/param_vel_node") == (False, [])
+    assert namesakes("/param_vel_node") == (False, [])
     assert lesson.self_check().checks[1].passed, lesson.self_check().text()
 
 
@@ -248,7 +248,7 @@ def test_lesson4_fails_for_a_node_that_declares_an_integer_and_a_slow_timer(tmp_
 
 
 def test_lesson8_fails_for_a_dump_left_by_an_earlier_run(stop_nodes, tmp_path: Path) -> None:
-    from course_lib.lessons.checks import DUMP_NAME
+    from course_lib.lessons.catalogue.l08_dump_parameters import DUMP_NAME
 
     lesson = start(8)
     lesson.learner_dir = tmp_path  # never the learner's own my_files/

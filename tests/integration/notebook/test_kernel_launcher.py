@@ -8,7 +8,7 @@ import psutil
 from jupyter_client.kernelspec import KernelSpecManager
 from jupyter_kernels import Kernel
 
-from course_lib.core.procfs import cmdline
+from course_lib.core.host.procfs import cmdline
 from course_lib.tools.kernelspec import KERNEL_NAME, LAUNCHER
 
 

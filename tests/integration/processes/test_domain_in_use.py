@@ -7,9 +7,9 @@ import sys
 import time
 
 import pytest
+from suite_env import independent_env
 
 from course_lib.processes.domain import domain_in_use, lease_domain
-from course_lib.tools.testing import independent_env
 
 pytestmark = pytest.mark.ros
 

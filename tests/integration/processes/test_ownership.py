@@ -16,9 +16,10 @@ from collections.abc import Iterator
 
 import pytest
 from leftovers import judge_leftover
+from suite_env import independent_env
 
+from course_lib.core.host.procfs import pid_namespace
 from course_lib.core.paths import runtime_dir
-from course_lib.core.procfs import pid_namespace
 from course_lib.core.waiting import wait_until
 from course_lib.processes.children import (
     NAME_ENV,
@@ -32,7 +33,6 @@ from course_lib.processes.children import (
     spawn,
 )
 from course_lib.processes.ownership import course_processes, protected_pids, read_process
-from course_lib.tools.testing import independent_env
 
 SLEEP = [sys.executable, "-c", "import time; print('up', flush=True); time.sleep(120)"]
 

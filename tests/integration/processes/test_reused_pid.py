@@ -15,8 +15,7 @@ import subprocess
 import sys
 
 from pid_namespace import namespace_prefix
-
-from course_lib.tools.testing import independent_env
+from suite_env import independent_env
 
 SCENARIO = """
 import json, subprocess, time

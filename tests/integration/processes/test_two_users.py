@@ -19,10 +19,10 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from suite_env import TEST_ENV
 
 from course_lib.core.paths import REPO_ROOT
 from course_lib.processes.domain import lease_domain
-from course_lib.tools.testing import TEST_ENV
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 from course_lib.core.paths import venv_bin_dir
-from course_lib.ros2.node.discovery import domain_newcomers
+from course_lib.ros2.node.participants import domain_newcomers
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 

@@ -1,4 +1,4 @@
-"""Which processes a command waits for as nodes starting (`discovery.domain_newcomers`).
+"""Which processes a command waits for as nodes starting (`participants.domain_newcomers`).
 
 A command run moments after a node starts waits until that node has joined (its publishers
 and services are then all counted). It must wait only for processes that can join its own
@@ -16,10 +16,10 @@ import time
 
 import pytest
 
-from course_lib.core import procfs
+from course_lib.core.host import procfs
 from course_lib.core.waiting import wait_until
 from course_lib.processes.children import spawn
-from course_lib.ros2.node.discovery import NEWCOMER_S, UNJOINED_S, domain_newcomers
+from course_lib.ros2.node.participants import NEWCOMER_S, UNJOINED_S, domain_newcomers
 
 pytestmark = pytest.mark.ros
 

@@ -145,7 +145,7 @@ def test_the_server_reply_writer_is_known(session: Session, param_vel: str) -> N
     client = RosClient(session.node, session.wait_future)
     try:
         assert client.services_ready(param_vel, timeout=10)
-        assert len(client._reply_writers(param_vel, "set_parameters")) == 1, (
+        assert len(client.calls.reply_writers(param_vel, "set_parameters")) == 1, (
             "the graph no longer shows the service's reply writer (rr/<service>Reply): every "
             "write now costs a probe round trip"
         )
@@ -173,7 +173,7 @@ def test_a_restarted_node_gets_each_write_once(session: Session) -> None:
                 )
                 assert result.successful and time.monotonic() - started < 2.0
                 time.sleep(0.5)  # a write re-sent would be applied within this
-                proofs.append(client._proven[("/again_node", "set_parameters")])
+                proofs.append(client.calls._proven[("/again_node", "set_parameters")])
             finally:
                 child.stop()
             assert _accepted(child) == [f"accepted [{value}]"]

@@ -22,7 +22,7 @@ from ros2_golden import GOLDEN, compare, console_env, golden_cases, reset_parame
 from ros2_golden_part2 import CASES as CASES2
 from ros2_golden_part2 import SKIPPED, compare2, names
 
-from course_lib.core import procfs
+from course_lib.core.host import procfs
 from course_lib.core.paths import WORKSPACE_INSTALL_DIR, venv_bin_dir
 from course_lib.core.waiting import wait_until
 from course_lib.processes.domain import lease_domain

@@ -12,11 +12,12 @@ import time
 
 import pytest
 
-from course_lib.core import procfs
+from course_lib.core.host import procfs
 from course_lib.core.waiting import wait_until
 from course_lib.processes.children import spawn
 from course_lib.ros2.node.client import RosClient
-from course_lib.ros2.node.discovery import FASTDDS_DEFAULT_ANNOUNCEMENT_S, read_bound_participants
+from course_lib.ros2.node.discovery import FASTDDS_DEFAULT_ANNOUNCEMENT_S
+from course_lib.ros2.node.participants import read_bound_participants
 from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
@@ -49,7 +50,7 @@ def test_a_warm_client_does_not_wait() -> None:
     # on a busy host the CI saw that second here, three times of three.
     own, client = _young_client()
     try:
-        client._born -= 2 * FASTDDS_DEFAULT_ANNOUNCEMENT_S  # as old as a warm daemon's
+        client.graph._born -= 2 * FASTDDS_DEFAULT_ANNOUNCEMENT_S  # as old as a warm daemon's
         started = time.monotonic()
         client.settle()
         # a young client waits for the announcement period (seconds); a warm one only asks
@@ -78,7 +79,7 @@ def test_two_live_namesakes_are_both_listed() -> None:
             return names.count("/param_vel_node") == 2
 
         def settled() -> bool:
-            return client._holders()[1]
+            return client.graph._holders()[1]
 
         # settled first: every bound participant seen, so the filter did run
         assert wait_until(lambda: settled() and twice(), 15), (
@@ -189,18 +190,18 @@ def test_a_joining_node_is_asked_to_answer_only_if_it_has_parameter_services(
         asked: list[str] = []
         monkeypatch.setattr(client, "answers", lambda name, timeout: asked.append(name) or True)
         pids = frozenset(child.pid & 0xFFFF for child in (plain, bare))
-        assert client._spinning(pids, 5.0)
+        assert client.graph._spinning(pids, 5.0)
         assert asked == ["/param_vel_node"]
 
         # a node's name seen before its services (they show 0.3 s later): it is asked
-        offers, shown = client._offers_parameters, time.monotonic() + 0.3
+        offers, shown = client.graph._offers_parameters, time.monotonic() + 0.3
 
         def services_late(name: str) -> bool:
             return time.monotonic() >= shown and offers(name)
 
-        monkeypatch.setattr(client, "_offers_parameters", services_late)
+        monkeypatch.setattr(client.graph, "_offers_parameters", services_late)
         asked.clear()
-        assert client._spinning(pids, 5.0)
+        assert client.graph._spinning(pids, 5.0)
         assert asked == ["/param_vel_node"]
     finally:
         own.close()

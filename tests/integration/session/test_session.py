@@ -15,8 +15,8 @@ from leftovers import judge_leftover
 from rclpy.parameter_client import AsyncParameterClient
 
 from course_lib.core.errors import ExecutableNotFoundError, PackageNotFoundError
+from course_lib.core.host.procfs import pid_alive
 from course_lib.core.paths import ROSJECT_DIR
-from course_lib.core.procfs import pid_alive
 from course_lib.processes.children import OWNER_ENV, SPAWNED_ENV, command_tag, reap_orphans
 from course_lib.ros2.node.client import RosClient
 from course_lib.session.session import Session

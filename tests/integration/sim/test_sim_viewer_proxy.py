@@ -11,7 +11,7 @@ import urllib.request
 import pytest
 
 from course_lib.config.simulation import load_simulation_settings
-from course_lib.core.ports import free_port
+from course_lib.core.host.ports import free_port
 from course_lib.notebook import start_world
 from course_lib.session.session import Session
 

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from course_lib.core.errors import ConfigError
-from course_lib.core.procfs import pid_alive
+from course_lib.core.host.procfs import pid_alive
 from course_lib.notebook import start_world
 from course_lib.session.session import Session
 

@@ -10,9 +10,9 @@ import sys
 from pathlib import Path
 
 import pytest
+from suite_env import independent_env
 
 from course_lib.core.paths import REPO_ROOT
-from course_lib.tools.testing import independent_env
 
 pytestmark = [pytest.mark.ros, pytest.mark.sim]
 

@@ -16,11 +16,11 @@ from collections.abc import Iterator
 import mujoco
 import pytest
 import umsgpack
+from suite_env import independent_env
 
 from course_lib.core.waiting import wait_until
 from course_lib.sim.view.live import LiveView
 from course_lib.sim.world.model import build_model
-from course_lib.tools.testing import independent_env
 from course_lib.viz.server import WATCHERS_COMMAND, serve_in_thread
 
 pytestmark = [

@@ -17,10 +17,10 @@ import pytest
 from meshcat.commands import SetTransform
 from meshcat.path import Path as MeshcatPath
 from meshcat.servers.zmqserver import ZMQWebSocketBridge
+from suite_env import independent_env
 
 from course_lib.processes.domain import lease_domain
 from course_lib.sim.view.live import ServerWindow
-from course_lib.tools.testing import independent_env
 from course_lib.viz.server import ORIGINS_ENV, LocalBridge, origin_allowed
 
 HUB = "https://hub.example.org"

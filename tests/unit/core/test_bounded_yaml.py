@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from course_lib.core.bounded_yaml import MAX_VALUES, YamlTooLarge, safe_load_bounded
 from course_lib.core.errors import CourseError
+from course_lib.core.files.bounded_yaml import MAX_VALUES, YamlTooLarge, safe_load_bounded
 from course_lib.launch.command.dry_run import _file_entries
 from course_lib.ros2.paramfile import ParamFileError, read_param_file
 

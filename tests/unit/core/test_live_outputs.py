@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import copy
 
-from course_lib.core.live_outputs import PLACEHOLDERS, scrub_live_outputs, scrub_on_save
+from course_lib.core.files.live_outputs import PLACEHOLDERS, scrub_live_outputs, scrub_on_save
 from course_lib.viz.viewer import Viewer
 
 WIDGET = {

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 
-from course_lib.core import procfs
+from course_lib.core.host import procfs
 
 UDP = """  sl  local_address rem_address   st tx_queue rx_queue tr tm->when retrnsmt   uid
    0: 0100007F:1CE8 00000000:0000 07 00000000:00000000 00:00000000 00000000     0

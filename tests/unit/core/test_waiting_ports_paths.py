@@ -8,8 +8,8 @@ import socket
 
 import pytest
 
+from course_lib.core.host.ports import free_port, held_only_by
 from course_lib.core.paths import append_once, prepend
-from course_lib.core.ports import free_port, held_only_by
 from course_lib.core.waiting import wait_until
 
 

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from course_lib.core.ports import free_port
-from course_lib.core.procfs import pid_namespace
+from course_lib.core.host.ports import free_port
+from course_lib.core.host.procfs import pid_namespace
 from course_lib.hub import launcher
 from course_lib.hub.guard.wall import wall_problem
 from course_lib.hub.launcher import WALL_OWNER, WALL_PREFIX, forget_stale_wall_folders

@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from course_lib.core.paths import NOTEBOOKS_DIR
+from course_lib.lessons.catalogue import LESSONS
 
 MAX_LINES = 6
 NOTEBOOKS = sorted(NOTEBOOKS_DIR.glob("[0-9][0-9]_*.ipynb"))
@@ -51,8 +52,8 @@ def fat_reasons(source: str, tags: list[str]) -> list[str]:
     return reasons
 
 
-def test_there_are_eleven_lessons() -> None:
-    assert [p.name[:2] for p in NOTEBOOKS] == [f"{n:02d}" for n in range(1, 12)]
+def test_the_notebooks_are_the_catalogues_lessons() -> None:
+    assert [p.name for p in NOTEBOOKS] == [spec.notebook for spec in LESSONS]
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)

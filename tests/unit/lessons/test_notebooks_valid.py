@@ -20,7 +20,7 @@ def test_notebook_is_valid(path: Path) -> None:
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
 def test_stored_notebooks_hold_no_live_output(path: Path) -> None:
     """A stored 3D view or widget shows an error when reopened: only placeholders are kept."""
-    from course_lib.core.live_outputs import is_live
+    from course_lib.core.files.live_outputs import is_live
 
     notebook = nbformat.read(path, as_version=4)
 

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
+from course_lib.core.host.procfs import cmdline
 from course_lib.core.paths import runtime_dir
-from course_lib.core.procfs import cmdline
 from course_lib.core.waiting import wait_until
 from course_lib.processes.ownership import is_course_lab
 

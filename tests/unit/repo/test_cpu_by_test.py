@@ -1,4 +1,4 @@
-"""The suite's CPU by test (tests/support/cpu_by_test.py): what it counts and how it sums."""
+"""The suite's CPU by test (tests/harness/cpu_by_test.py): what it counts and how it sums."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from cpu_by_test import CpuMeter, read_records, record, summary
 
-SUPPORT = Path(__file__).resolve().parents[2] / "support"
+SUPPORT = Path(__file__).resolve().parents[2] / "harness"
 
 # A meter in one kind of cgroup (the script's argument: its usage file), or "skip" if none
 _METER_OF_ONE_KIND = """

@@ -7,9 +7,9 @@ from pathlib import Path
 
 import pytest
 from file_order import SECONDS_FILE, longest_first, read_seconds, write_seconds
+from run_suite import pytest_argv
 
 from course_lib.core.paths import REPO_ROOT
-from course_lib.tools.suite import pytest_argv
 
 
 @dataclass

@@ -7,10 +7,10 @@ import sys
 from pathlib import Path
 
 import pytest
+from course_goldens import with_course_interfaces, with_course_services
 
 from course_lib.ros2.command.commands import run_collected
 from course_lib.ros2.interface_text import show_lines
-from course_lib.tools.testing import with_course_interfaces, with_course_services
 
 GOLDEN = Path(__file__).resolve().parents[2] / "golden" / "ros2" / "cases_part2.json"
 CASES = {c["case"]: c for c in json.loads(GOLDEN.read_text())}

@@ -7,7 +7,7 @@ import subprocess
 from pathlib import Path
 
 from course_lib.core.paths import runtime_dir
-from course_lib.viz.server import command_socket_url, remove_dead_command_sockets
+from course_lib.viz.command_sockets import command_socket_url, remove_dead_command_sockets
 
 
 def _dead_pid() -> int:

@@ -11,7 +11,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from ..context import Context
+from ...verbkit.context import Context
+from ...verbkit.registry import verb
 from . import templates as t
 
 __all__ = ["add_arguments", "main"]
@@ -149,6 +150,7 @@ def _node_name(args: argparse.Namespace, ctx: Context) -> str | None:
     return args.node_name
 
 
+@verb("pkg", "create", "Create a new ROS 2 package", arguments=add_arguments, graph=False)
 def main(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 pkg create <package_name> [options]`."""
     if args.license == "?":

@@ -11,8 +11,9 @@ from typing import Any
 
 from ....core import ament, param_journal
 from ....core.errors import PackageNotFoundError
-from ..absent_programs import absent_program_hint
-from ..context import Context
+from ...verbkit.context import Context
+from ...verbkit.registry import command_verb, verb
+from .absent_programs import absent_program_hint
 
 __all__ = [
     "executable_paths",
@@ -44,6 +45,21 @@ def executable_paths(package: str, env: dict[str, str]) -> list[Path]:
     return paths
 
 
+def pkg_executables_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of `ros2 pkg executables`."""
+    parser.add_argument("package_name", nargs="?", help="The package name")
+    parser.add_argument(
+        "--full-path", action="store_true", default=False, help="Show full path of each executable"
+    )
+
+
+@verb(
+    "pkg",
+    "executables",
+    "Output a list of package specific executables",
+    arguments=pkg_executables_arguments,
+    graph=False,
+)
 def pkg_executables(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 pkg executables [package] [--full-path]`."""
     env = _env(ctx)
@@ -60,6 +76,21 @@ def pkg_executables(args: argparse.Namespace, ctx: Context) -> Any:
     return 0
 
 
+def pkg_prefix_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of `ros2 pkg prefix`."""
+    parser.add_argument("package_name", help="The package name")
+    parser.add_argument(
+        "--share", action="store_true", help="Show share directory for the package"
+    )
+
+
+@verb(
+    "pkg",
+    "prefix",
+    "Output the prefix path of a package",
+    arguments=pkg_prefix_arguments,
+    graph=False,
+)
 def pkg_prefix(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 pkg prefix <package> [--share]`."""
     try:
@@ -95,6 +126,21 @@ def _report_exit(code: int, ctx: Context) -> None:
         ctx.console.out(f"{RUN_PREFIX} Process exited with failure {code}\n")
 
 
+def run_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of `ros2 run`."""
+    parser.add_argument(
+        "--prefix",
+        help="Prefix command, which should go before the executable. Command must be wrapped in "
+        "quotes if it contains spaces (e.g. --prefix 'gdb -ex run --args').",
+    )
+    parser.add_argument("package_name", help="Name of the ROS package")
+    parser.add_argument("executable_name", help="Name of the executable")
+    parser.add_argument(
+        "argv", nargs=argparse.REMAINDER, help="Pass arbitrary arguments to the executable"
+    )
+
+
+@command_verb("run", "Run a package specific executable", arguments=run_arguments, graph=False)
 def run(args: argparse.Namespace, ctx: Context) -> Any:
     """`ros2 run <package> <executable> [args...]`: in a terminal, in the foreground."""
     env = _env(ctx)
@@ -124,33 +170,3 @@ def run(args: argparse.Namespace, ctx: Context) -> Any:
             continue  # the child got the same Ctrl-C and is shutting down
     _report_exit(code, ctx)
     return code
-
-
-def pkg_executables_arguments(parser: argparse.ArgumentParser) -> None:
-    """Arguments of `ros2 pkg executables`."""
-    parser.add_argument("package_name", nargs="?", help="The package name")
-    parser.add_argument(
-        "--full-path", action="store_true", default=False, help="Show full path of each executable"
-    )
-
-
-def pkg_prefix_arguments(parser: argparse.ArgumentParser) -> None:
-    """Arguments of `ros2 pkg prefix`."""
-    parser.add_argument("package_name", help="The package name")
-    parser.add_argument(
-        "--share", action="store_true", help="Show share directory for the package"
-    )
-
-
-def run_arguments(parser: argparse.ArgumentParser) -> None:
-    """Arguments of `ros2 run`."""
-    parser.add_argument(
-        "--prefix",
-        help="Prefix command, which should go before the executable. Command must be wrapped in "
-        "quotes if it contains spaces (e.g. --prefix 'gdb -ex run --args').",
-    )
-    parser.add_argument("package_name", help="Name of the ROS package")
-    parser.add_argument("executable_name", help="Name of the executable")
-    parser.add_argument(
-        "argv", nargs=argparse.REMAINDER, help="Pass arbitrary arguments to the executable"
-    )

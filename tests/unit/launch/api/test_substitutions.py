@@ -6,14 +6,13 @@ import shutil
 
 import pytest
 
+from course_lib.launch.api.logic_substitutions import EqualsSubstitution, NotEqualsSubstitution
 from course_lib.launch.api.substitutions import (
     Command,
     EnvironmentVariable,
-    EqualsSubstitution,
     FindExecutable,
     LaunchConfiguration,
     LocalSubstitution,
-    NotEqualsSubstitution,
     PathJoinSubstitution,
     PythonExpression,
 )

@@ -12,7 +12,7 @@ from collections.abc import Iterator
 
 import pytest
 
-from course_lib.core.ports import free_port
+from course_lib.core.host.ports import free_port
 from course_lib.lessons.progress import client as progress_report
 from course_lib.lessons.progress.client import TIMEOUT_S, report_progress
 from course_lib.lessons.report import SelfCheck, check

@@ -8,22 +8,20 @@ from dataclasses import replace
 import pytest
 from fake_clock import FakeClock
 
+from course_lib.core.host.procfs import udp_ports
 from course_lib.core.paths import PACKAGE_DIR
-from course_lib.core.procfs import udp_ports
 from course_lib.ros2.command import parsers
 from course_lib.ros2.node.discovery import (
     DEFAULT_TIMING,
     NAME_WAIT_S,
-    NEWCOMER_S,
     DiscoveryTiming,
     GraphView,
-    bound_participants,
-    participant_prefix,
     profile_timing,
     requested_spin_time,
     timing_from_profile,
     wait_settled,
 )
+from course_lib.ros2.node.participants import NEWCOMER_S, bound_participants, participant_prefix
 
 PROFILE = PACKAGE_DIR / "dds" / "fastdds_profile.xml"
 TIMING = DiscoveryTiming(floor_s=0.35, quiet_s=0.1, unknown_wait_s=3.5)
@@ -280,7 +278,7 @@ def test_a_process_that_never_joins_holds_a_warm_client_bounded() -> None:
 
 
 def test_a_participant_names_its_process() -> None:
-    from course_lib.ros2.node.discovery import prefix_pid
+    from course_lib.ros2.node.participants import prefix_pid
 
     assert prefix_pid([1, 15, 120, 253, 0x99, 0x6A, 151, 51, 0, 0, 0, 0]) == 0x6A99
 
@@ -288,7 +286,7 @@ def test_a_participant_names_its_process() -> None:
 def test_a_participant_whose_process_has_ended_is_not_counted_as_seen() -> None:
     """Three bound on the host (the client, a command still running, the node not seen yet);
     seen: the client, the command, and one that has ended (its removal not arrived yet)."""
-    from course_lib.ros2.node.discovery import present_participants, unseen_participants
+    from course_lib.ros2.node.participants import present_participants, unseen_participants
 
     def prefix(pid: int) -> tuple[int, ...]:
         return (1, 15, 120, 253, pid & 0xFF, pid >> 8 & 0xFF, 151, 51, 0, 0, 0, 0)
@@ -318,7 +316,7 @@ def test_a_participant_whose_process_has_ended_is_not_counted_as_seen() -> None:
 
 
 def test_ros2_commands_are_not_nodes_starting() -> None:
-    from course_lib.ros2.node.discovery import ros2_client_command
+    from course_lib.ros2.node.participants import ros2_client_command
 
     venv = "/x/.venv/bin"
     assert ros2_client_command((f"{venv}/python", "-S", f"{venv}/ros2", "param", "get", "/n"))

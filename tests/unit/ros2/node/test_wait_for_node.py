@@ -1,4 +1,4 @@
-"""`RosClient.wait_for_node` decides on its last look, not on one taken before the graph grew.
+"""`wait_for_node` (GraphClient's) decides on its last look, not on one before the graph grew.
 
 A node's participant can answer while the client takes the view that ends the wait (seen in
 the suite: a starved process resumed, "not found after 6.2 s" with the node in the graph). The
@@ -12,16 +12,16 @@ from __future__ import annotations
 import pytest
 from fake_clock import FakeClock
 
-from course_lib.ros2.node import client as client_module
-from course_lib.ros2.node.client import RosClient
+from course_lib.ros2.node import graph_client as graph_module
 from course_lib.ros2.node.discovery import GraphView
+from course_lib.ros2.node.graph_client import GraphClient
 from course_lib.ros2.results import NodeName
 
 NODE = NodeName("param_vel_node", "/", "/param_vel_node")
 ALL_SEEN = GraphView(frozenset(), frozenset(), unknown_endpoints=0, missing_participants=0)
 
 
-class _ArrivingGraph(RosClient):
+class _ArrivingGraph(GraphClient):
     """A warm client whose graph gains the node as the wait's deciding view is taken."""
 
     def __init__(self, arrives_in: str) -> None:  # no rclpy node: the graph is scripted
@@ -55,9 +55,9 @@ class _ArrivingGraph(RosClient):
 
 @pytest.fixture
 def short_waits(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(client_module, "DISCOVERY_WAIT_S", 0.05)
-    monkeypatch.setattr(client_module, "YOUNG_CLIENT_S", 0.0)
-    monkeypatch.setattr(client_module, "SETTLED_QUIET_S", 0.15)
+    monkeypatch.setattr(graph_module, "DISCOVERY_WAIT_S", 0.05)
+    monkeypatch.setattr(graph_module, "YOUNG_CLIENT_S", 0.0)
+    monkeypatch.setattr(graph_module, "SETTLED_QUIET_S", 0.15)
 
 
 def test_a_node_that_arrives_with_the_deadlines_view_is_found(short_waits: None) -> None:

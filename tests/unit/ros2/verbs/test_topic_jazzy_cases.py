@@ -15,8 +15,8 @@ from rclpy.serialization import serialize_message
 from std_msgs.msg import Byte, MultiArrayDimension, MultiArrayLayout, UInt8MultiArray, UInt32
 
 from course_lib.ros2.command.commands import run_collected
-from course_lib.ros2.node.client import RosClient
 from course_lib.ros2.node.discovery import GraphView
+from course_lib.ros2.node.graph_client import GraphClient
 from course_lib.ros2.results import TopicInfo
 
 INFO = {
@@ -52,8 +52,9 @@ class _Node:
         return []
 
 
-class _Graph(RosClient):
-    """A warm client that knows the whole domain: `topics` and nothing else."""
+class _Graph(GraphClient):
+    """A warm client that knows the whole domain: `topics` and nothing else (the topic verbs
+    ask a client only about the graph)."""
 
     def __init__(self, topics: dict[str, str], message: Any = None, *, age: float = 60.0) -> None:
         self._topics = topics  # no rclpy node: the graph is scripted

@@ -12,10 +12,10 @@ from collections.abc import Sequence
 from pathlib import Path
 
 import nbformat
+from suite_env import independent_env
 
 from course_lib.core.paths import NOTEBOOKS_DIR, REPO_ROOT
 from course_lib.processes.children import ChildProcess, spawn
-from course_lib.tools.testing import independent_env
 
 __all__ = ["ARTIFACTS", "LabServer"]
 

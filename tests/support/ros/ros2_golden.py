@@ -15,7 +15,7 @@ from course_lib.core.waiting import wait_until
 from course_lib.ros2.api import nodes_and_params as api
 from course_lib.session.session import Session, get_session
 
-GOLDEN = Path(__file__).resolve().parents[1] / "golden" / "ros2"
+GOLDEN = Path(__file__).resolve().parents[2] / "golden" / "ros2"
 TYPES_DEFAULTS = {
     "count": 5,
     "robot_name": "turtle",

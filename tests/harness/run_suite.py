@@ -1,4 +1,8 @@
-"""`make test`: the whole suite (unit, integration, notebooks, browser) in one pytest run."""
+"""`make test`: the whole suite (unit, integration, notebooks, browser) in one pytest run.
+
+`python tests/harness/run_suite.py [pytest options]`; the test harness lives beside the tests,
+not in the course's package.
+"""
 
 from __future__ import annotations
 
@@ -7,20 +11,19 @@ import shutil
 import subprocess
 import sys
 
-from ..core.paths import NOTEBOOKS_DIR, REPO_ROOT
-from ..ros2.node.direct import TEARDOWN_DUMPS_ENV
-from .testing import TEST_ENV
+from suite_env import TEST_ENV
+
+from course_lib.core.paths import NOTEBOOKS_DIR, REPO_ROOT
+from course_lib.ros2.node.direct import TEARDOWN_DUMPS_ENV
 
 __all__ = ["pytest_argv", "run_tests"]
 
 
 def pytest_argv(extra: list[str]) -> list[str]:
     """Return the pytest command line: tests/ and every notebook, one worker per core and two
-    more: the tests wait on real processes much of the time (on 2 cores, 2 workers left them
-    65% idle and took 714-730 s; on fresh clones 3 took 586-603 s, 4 took 507-578 s with the
-    cores 84-89% busy and no rerun in 24 of 25 runs. A fifth worker took 487-531 s at 93-95%
-    busy, but at that load tests failed that never fail at 4: a lesson's Run All lost to a
-    kernel websocket closed as it opened, a panel that missed a value for 10 s)."""
+    more. The tests wait on real processes much of the time, so one worker per core leaves the
+    cores idle between waits; two more keep them busy, and more than that overloads them until
+    tests of real processes miss their timeouts (a kernel's websocket, a panel's value)."""
     cores = os.cpu_count() or 1
     workers = str(cores + 2) if cores >= 2 else "0"
     notebooks = ["notebooks"] if any(NOTEBOOKS_DIR.glob("*.ipynb")) else []
@@ -38,7 +41,7 @@ def pytest_argv(extra: list[str]) -> list[str]:
         "--dist",
         "loadfile",
         # tests/conftest.py deals the longest files first; xdist's own order (by test count)
-        # dealt the long one-test files last, one worker busy alone for 90 s at the end
+        # would deal the long one-test files last, leaving one worker busy alone at the end
         "--no-loadscope-reorder",
         # Tests of real processes on 2 busy cores: one that fails is run again (up to twice)
         # and reported as a rerun, so an intermittent failure stays visible in the summary.
@@ -64,3 +67,7 @@ def run_tests(extra: list[str]) -> int:
     if code == 5:
         print("pytest collected no tests: the suite is missing.", file=sys.stderr)
     return code
+
+
+if __name__ == "__main__":
+    sys.exit(run_tests(sys.argv[1:]))

@@ -12,11 +12,11 @@ import threading
 import time
 from typing import Any
 
+from course_goldens import with_course_interfaces, with_course_services
 from ros2_golden import GOLDEN, compare
 
 from course_lib.ros2.command.commands import Context, execute
-from course_lib.ros2.verbs.console import CollectingConsole
-from course_lib.tools.testing import with_course_interfaces, with_course_services
+from course_lib.ros2.verbkit.console import CollectingConsole
 
 CASES = {c["case"]: c for c in json.loads((GOLDEN / "cases_part2.json").read_text())}
 WAITING = "waiting for service to become available...\n"

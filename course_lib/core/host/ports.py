@@ -47,7 +47,7 @@ def held_only_by(host: str, port: int, uid: int) -> bool:
     only where none is, an IPv6 wildcard one may (dual-stack: it cannot coexist with those).
     """
     target = _plain(ipaddress.ip_address(host))
-    owners = []
+    owners: list[int] = []  # the uids of the sockets that would take the connection
     for tables in (("tcp",), ("tcp6",)) if target.version == 4 else (("tcp6",),):
         if owners:  # no other account's socket can share its address and port, dual-stack or not
             break

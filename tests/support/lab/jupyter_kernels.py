@@ -12,13 +12,13 @@ from pathlib import Path
 
 import psutil
 from jupyter_client.manager import KernelManager
+from suite_env import independent_env
 
+from course_lib.core.host.procfs import environ as process_environ
+from course_lib.core.host.procfs import pid_alive
 from course_lib.core.paths import REPO_ROOT
-from course_lib.core.procfs import environ as process_environ
-from course_lib.core.procfs import pid_alive
 from course_lib.core.waiting import wait_until
 from course_lib.processes.children import OWNER_ENV
-from course_lib.tools.testing import independent_env
 
 __all__ = [
     "CellResult",

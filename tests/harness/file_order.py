@@ -9,14 +9,14 @@ from collections.abc import Collection, Sequence
 from pathlib import Path
 from typing import Protocol
 
-from course_lib.core.atomic_files import atomic_write
+from course_lib.core.files.atomic_files import atomic_write
 
 __all__ = ["SECONDS_FILE", "file_of", "longest_first", "read_seconds", "write_seconds"]
 
 SECONDS_FILE = Path(__file__).resolve().parents[1] / "file_seconds.txt"
 _HEADER = """\
 # Seconds each test file took in a whole run (`make test` on 2 cores): the suite
-# deals the files longest first (tests/support/file_order.py). Files not listed count as 0.
+# deals the files longest first (tests/harness/file_order.py). Files not listed count as 0.
 # Written by `COURSE_FILE_SECONDS=tests/file_seconds.txt make test`.
 """
 
