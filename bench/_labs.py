@@ -23,7 +23,8 @@ from suite_env import independent_env
 from course_lib.core.host.procfs import pid_namespace
 from course_lib.core.paths import REPO_ROOT, runtime_dir
 from course_lib.lab.protocol import SOCKET_ENV
-from course_lib.processes.children import OWNER_ENV, OWNER_NS_ENV, ChildProcess, owner_tag, spawn
+from course_lib.processes.children import ChildProcess, spawn
+from course_lib.processes.orphans import OWNER_ENV, OWNER_NS_ENV, owner_tag
 
 __all__ = ["Lab", "LabKernel", "start_lab", "tree_pids"]
 

@@ -49,7 +49,7 @@ from bench._capacity_report import (
 )
 from bench._labs import Lab, LabKernel, start_lab, tree_pids
 from course_lib.core.host.procfs import environ as process_environ
-from course_lib.processes.children import NAME_ENV
+from course_lib.processes.orphans import NAME_ENV
 
 OTHERS_LIMIT = 0.25  # cores used outside the bench that make a failed round suspect
 ATTEMPTS = 3

@@ -20,7 +20,7 @@ import yaml
 from ..core.errors import ConfigError, CourseError
 from ..core.host.procfs import pid_namespace
 from ..core.host.signalling import send
-from ..processes.children import owner_alive, owner_tag
+from ..processes.orphans import owner_alive, owner_tag
 from .guard.gate import BACKLOG, Door, Gate, open_files_limit, unix_listener
 from .guard.runtime_leftovers import remove_orphaned_folders
 from .guard.tied import tied_preexec

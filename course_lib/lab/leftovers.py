@@ -11,7 +11,7 @@ import shutil
 from pathlib import Path
 
 from ..core.paths import REPO_ROOT, runtime_dir
-from ..processes.children import reap_orphans
+from ..processes.orphans import reap_orphans
 from ..processes.ownership import is_course_lab, lab_markers
 
 __all__ = ["clean_up_killed_labs", "ran_from_this_clone", "workspaces_dir"]

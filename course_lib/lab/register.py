@@ -15,7 +15,7 @@ from dataclasses import asdict, dataclass
 
 from ..core.host.signalling import send
 from ..core.waiting import wait_until
-from ..processes.children import owner_tag
+from ..processes.orphans import owner_tag
 
 __all__ = ["NodeRecord", "NodeRegister", "node_name_from_log", "stop_tagged"]
 

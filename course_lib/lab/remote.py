@@ -9,7 +9,8 @@ from __future__ import annotations
 import time
 
 from ..core.errors import CourseError
-from ..processes.children import OutputLine, owner_tag
+from ..processes.children import OutputLine
+from ..processes.orphans import owner_tag
 from .client import MachineClient
 
 __all__ = ["LabProcess"]

@@ -18,7 +18,8 @@ from dataclasses import dataclass
 
 from ..core import param_journal
 from ..core.host import procfs
-from ..processes.children import ChildProcess, OutputLine, owner_tag
+from ..processes.children import ChildProcess, OutputLine
+from ..processes.orphans import owner_tag
 from .client import machine_client
 from .register import NodeRecord, NodeRegister, node_name_from_log
 

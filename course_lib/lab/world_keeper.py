@@ -10,7 +10,8 @@ import threading
 from pathlib import Path
 from typing import Any
 
-from ..processes.children import ChildProcess, owner_tag
+from ..processes.children import ChildProcess
+from ..processes.orphans import owner_tag
 from ..sim.launcher import Spawner, start_world_processes
 
 __all__ = ["WorldKeeper"]

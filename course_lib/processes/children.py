@@ -28,8 +28,6 @@ from ..core.errors import ProcessStartError
 from ..core.host import procfs
 from ..core.host.signalling import send
 from ..core.paths import REPO_ROOT
-
-# The tags and the reaping live in orphans.py; the names callers import from here stay here.
 from .orphans import (
     CLONE_ENV,
     NAME_ENV,
@@ -37,23 +35,12 @@ from .orphans import (
     OWNER_NS_ENV,
     SPAWNED_ENV,
     command_tag,
-    owner_alive,
     owner_tag,
-    reap_orphans,
 )
 
 __all__ = [
-    "CLONE_ENV",
-    "NAME_ENV",
-    "OWNER_ENV",
-    "OWNER_NS_ENV",
-    "SPAWNED_ENV",
     "ChildProcess",
     "OutputLine",
-    "command_tag",
-    "owner_alive",
-    "owner_tag",
-    "reap_orphans",
     "set_parent_death_signal",
     "spawn",
 ]

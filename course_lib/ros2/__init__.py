@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import importlib
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
 
+TYPE_CHECKING = False  # as typing's, without importing typing: the terminal's `ros2` starts light
 if TYPE_CHECKING:
     from ..processes.children import ChildProcess
 

@@ -19,7 +19,7 @@ from lab_server import ARTIFACTS, LabServer
 from course_lib.core.host.procfs import environ as process_environ
 from course_lib.core.host.procfs import pid_alive
 from course_lib.core.waiting import wait_until
-from course_lib.processes.children import owner_tag
+from course_lib.processes.orphans import owner_tag
 from course_lib.ros2.node.connect import daemon_pids, daemon_socket
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import os
 
-from course_lib.processes.children import NAME_ENV, OWNER_ENV, OWNER_NS_ENV, SPAWNED_ENV
 from course_lib.processes.domain import DOMAIN_ENV
+from course_lib.processes.orphans import NAME_ENV, OWNER_ENV, OWNER_NS_ENV, SPAWNED_ENV
 from course_lib.session.session import SESSION_DOMAIN_ENV
 from course_lib.tools.notebook_outputs import OUTPUT_ENV
 

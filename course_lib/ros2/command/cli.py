@@ -11,8 +11,8 @@ from __future__ import annotations
 import os
 import sys
 from collections.abc import Callable
-from typing import TYPE_CHECKING
 
+TYPE_CHECKING = False  # as typing's, without importing typing: the terminal's `ros2` starts light
 if TYPE_CHECKING:
     from course_lib.ros2.node.client import RosClient
 

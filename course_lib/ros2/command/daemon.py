@@ -24,7 +24,8 @@ from typing import Any
 
 from ...core.host.ports import unix_socket_answers
 from ...core.param_journal import acting_door
-from ...processes.children import OWNER_ENV, ChildProcess, owner_alive, spawn
+from ...processes.children import ChildProcess, spawn
+from ...processes.orphans import OWNER_ENV, owner_alive
 from ...processes.ownership import LAB_ENV
 from ..node.connect import IDLE_ENV, SHUTDOWN, daemon_argv, daemon_lock, daemon_socket
 from ..verbkit.console import StreamingConsole

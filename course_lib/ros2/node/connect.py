@@ -18,7 +18,7 @@ from pathlib import Path
 
 from ...core.host import procfs
 from ...core.waiting import wait_until
-from ...processes.children import CLONE_ENV, OWNER_ENV, owner_tag
+from ...processes.orphans import CLONE_ENV, OWNER_ENV, owner_tag
 from .participants import of_domain_here
 from .wire import (
     DaemonUnavailable,

@@ -9,13 +9,10 @@ through `lesson.self_check()` and passes once its file is written.
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
-from added_lesson import add_lesson_12, copy_repository
+from added_lesson import add_lesson_12, copy_repository, run_in_copy
 
 from course_lib.core.paths import REPO_ROOT
 
@@ -46,17 +43,7 @@ def test_a_lesson_added_by_the_catalogue_starts_and_checks(tmp_path: Path) -> No
     add_lesson_12(root)
     work = tmp_path / "work"
     work.mkdir()
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("COURSE_", "PYTHONPATH"))}
-    env.update(PYTHONPATH=str(root), COURSE_LEARNER_ROOT=str(work))
-    done = subprocess.run(
-        [sys.executable, "-c", PROBE, str(work)],
-        cwd=root,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
-    assert done.returncode == 0, done.stderr[-3000:]
+    done = run_in_copy(root, PROBE, work, COURSE_LEARNER_ROOT=str(work))
     lines = done.stdout.splitlines()
     assert lines[:2] == [
         "Lesson 12 · A throwaway lesson",

@@ -21,16 +21,15 @@ from suite_env import independent_env
 from course_lib.core.host.procfs import pid_namespace
 from course_lib.core.paths import runtime_dir
 from course_lib.core.waiting import wait_until
-from course_lib.processes.children import (
+from course_lib.processes.children import ChildProcess, spawn
+from course_lib.processes.orphans import (
     NAME_ENV,
     OWNER_ENV,
     OWNER_NS_ENV,
     SPAWNED_ENV,
-    ChildProcess,
     command_tag,
     owner_tag,
     reap_orphans,
-    spawn,
 )
 from course_lib.processes.ownership import course_processes, protected_pids, read_process
 

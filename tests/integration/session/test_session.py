@@ -17,7 +17,7 @@ from rclpy.parameter_client import AsyncParameterClient
 from course_lib.core.errors import ExecutableNotFoundError, PackageNotFoundError
 from course_lib.core.host.procfs import pid_alive
 from course_lib.core.paths import ROSJECT_DIR
-from course_lib.processes.children import OWNER_ENV, SPAWNED_ENV, command_tag, reap_orphans
+from course_lib.processes.orphans import OWNER_ENV, SPAWNED_ENV, command_tag, reap_orphans
 from course_lib.ros2.node.client import RosClient
 from course_lib.session.session import Session
 

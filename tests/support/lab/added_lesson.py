@@ -4,10 +4,13 @@ added: its notebook, one module in course_lib/lessons/catalogue/ and one line in
 from __future__ import annotations
 
 import json
+import os
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
-__all__ = ["MODULE", "NOTEBOOK", "TABLE", "add_lesson_12", "copy_repository"]
+__all__ = ["MODULE", "NOTEBOOK", "TABLE", "add_lesson_12", "copy_repository", "run_in_copy"]
 
 TABLE = Path("course_lib/lessons/catalogue/__init__.py")
 MODULE = Path("course_lib/lessons/catalogue/l12_throwaway.py")
@@ -18,18 +21,17 @@ MODULE_TEXT = '''"""Lesson 12, a throwaway: its self-check, one templated cell a
 
 from __future__ import annotations
 
-from typing import Any
+from ...config.course import CourseSettings
+from .spec import Check, LessonSpec, LessonView, check
 
-from .spec import Check, LessonSpec, check
 
-
-def self_check(lesson: Any) -> list[Check]:
+def self_check(lesson: LessonView) -> list[Check]:
     """Return lesson 12's check: the learner wrote my_files/throwaway.txt."""
     done = lesson.learner_file("throwaway.txt").exists()
     return [check("you wrote my_files/throwaway.txt", done, "run the cell that writes it.")]
 
 
-def _prose(s: Any) -> str:
+def _prose(s: CourseSettings) -> str:
     return f"Drive at {s.default_velocity_mps:g} m/s."
 
 
@@ -79,3 +81,21 @@ def copy_repository(source: Path, root: Path) -> None:
     ignore = shutil.ignore_patterns("__pycache__", "my_files", ".ipynb_checkpoints")
     for folder in ("course_lib", "config", "notebooks"):
         shutil.copytree(source / folder, root / folder, ignore=ignore)
+
+
+def run_in_copy(
+    root: Path, probe: str, work: Path, **env: str
+) -> subprocess.CompletedProcess[str]:
+    """Run the Python `probe` (argv[1]: `work`) on the copy at `root`, none of this process's
+    course settings inherited; fail the test with its stderr if it fails."""
+    keep = {k: v for k, v in os.environ.items() if not k.startswith(("COURSE_", "PYTHONPATH"))}
+    done = subprocess.run(
+        [sys.executable, "-c", probe, str(work)],
+        cwd=root,
+        env={**keep, "PYTHONPATH": str(root), **env},
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    return done

@@ -18,7 +18,7 @@ from course_lib.core.host.procfs import environ as process_environ
 from course_lib.core.host.procfs import pid_alive
 from course_lib.core.paths import REPO_ROOT
 from course_lib.core.waiting import wait_until
-from course_lib.processes.children import OWNER_ENV
+from course_lib.processes.orphans import OWNER_ENV
 
 __all__ = [
     "CellResult",

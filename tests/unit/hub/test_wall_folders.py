@@ -15,7 +15,7 @@ from course_lib.core.host.procfs import pid_namespace
 from course_lib.hub import launcher
 from course_lib.hub.guard.wall import wall_problem
 from course_lib.hub.launcher import WALL_OWNER, WALL_PREFIX, forget_stale_wall_folders
-from course_lib.processes.children import owner_tag
+from course_lib.processes.orphans import owner_tag
 
 
 def _dead_owner() -> str:

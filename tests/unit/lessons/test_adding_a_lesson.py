@@ -13,12 +13,9 @@ from __future__ import annotations
 
 import difflib
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
-from added_lesson import MODULE, NOTEBOOK, TABLE, add_lesson_12, copy_repository
+from added_lesson import MODULE, NOTEBOOK, TABLE, add_lesson_12, copy_repository, run_in_copy
 
 from course_lib.core.paths import REPO_ROOT
 from course_lib.lessons.settings import load_course_settings
@@ -91,17 +88,7 @@ def test_a_new_lesson_is_a_notebook_a_module_and_a_table_line(tmp_path: Path) ->
     assert table_lines == ['+    "l12_throwaway",']
     work = tmp_path / "work"
     work.mkdir()
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("COURSE_", "PYTHONPATH"))}
-    env["PYTHONPATH"] = str(root)
-    done = subprocess.run(
-        [sys.executable, "-c", PROBE, str(work)],
-        cwd=root,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
-    assert done.returncode == 0, done.stderr[-3000:]
+    done = run_in_copy(root, PROBE, work)
     out = json.loads(done.stdout.splitlines()[-1])
     assert out["stored"] == [["ada", 12, False]]
     assert out["exercises"] == 12

@@ -3,7 +3,6 @@ learner's program started from a lab terminal): what `make stop` and the reaper 
 
 from __future__ import annotations
 
-from course_lib.processes import children, orphans
 from course_lib.processes.orphans import command_tag, runs_as_spawned
 
 
@@ -14,11 +13,3 @@ def test_the_spawn_tag_matches_the_command_as_proc_shows_it() -> None:
     assert not runs_as_spawned(["/bin/bash", "--rcfile", "lab_bashrc.bash", "-i"], tag)
     assert not runs_as_spawned(["sleep", "600"], tag)
     assert not runs_as_spawned(["/venv/bin/jupyter", "lab"], tag)
-
-
-def test_children_hands_out_the_tags_spawn_sets() -> None:
-    """Callers import the tags and the reaper from `children` too: the same objects as
-    orphans.py's, so the tag spawn sets is the one the reaper reads."""
-    for name in set(children.__all__) & set(orphans.__all__):
-        assert getattr(children, name) is getattr(orphans, name), name
-    assert {"OWNER_ENV", "owner_tag", "owner_alive", "reap_orphans"} <= set(children.__all__)
