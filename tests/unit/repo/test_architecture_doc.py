@@ -13,6 +13,9 @@ PACKAGE = REPO_ROOT / "course_lib"
 FILE_SUFFIXES = (".py", ".md", ".yaml", ".yml", ".json", ".toml", ".ipynb", ".xml", ".cmake")
 CODE_SPAN = re.compile(r"`([^`\s]+)`")
 PLACEHOLDER = re.compile(r"NN|<|\*|\{")
+# The learner's folder (notebooks/my_files/, lessons/files.py) is made when a lesson first
+# runs: a clone has none, so what the page says of it is not looked for.
+LEARNERS = "my_files/"
 
 
 def _named(text: str) -> list[str]:
@@ -29,7 +32,7 @@ def _named(text: str) -> list[str]:
 
 def _candidates(token: str) -> list[Path]:
     """Return where `token` may live: from the repository, from course_lib, as `module.attr`."""
-    roots = [REPO_ROOT, PACKAGE, REPO_ROOT / "notebooks"]
+    roots = [REPO_ROOT, PACKAGE]
     forms = [token]
     if not token.endswith(FILE_SUFFIXES) and not token.endswith("/"):
         parts = token.split(".")  # `sim/world/kinematics.DiffDrive.wheel_speeds`
@@ -60,6 +63,8 @@ def missing_paths(text: str) -> list[str]:
     """Return the paths `text` names that exist nowhere."""
     missing = []
     for token in _named(text):
+        if token.startswith(LEARNERS):
+            continue
         if any(p.exists() for p in _candidates(token)) or _under_a_folder(token):
             continue
         if "/" not in token.rstrip("/") and _exists_somewhere(token):
