@@ -30,6 +30,7 @@ from course_lib.ros2.node.connect import daemon_socket  # noqa: E402
 from course_lib.session.session import get_session  # noqa: E402
 
 NODE = REPO / "tests" / "golden" / "ros2" / "nodes" / "param_vel_node.py"
+STAMPED = NODE.with_name("stamped_talker.py")  # /stamped, TwistStamped, 10 Hz
 
 
 def _timed(action, runs: int) -> list[float]:  # type: ignore[no-untyped-def]
@@ -151,21 +152,6 @@ def _not_found(env: dict[str, str], runs: int) -> None:
     )
 
 
-STAMPED = (
-    "import rclpy\n"
-    "from geometry_msgs.msg import TwistStamped\n"
-    "rclpy.init()\n"
-    "node = rclpy.create_node('stamped_talker')\n"
-    "pub = node.create_publisher(TwistStamped, '/stamped', 10)\n"
-    "def tick():\n"
-    "    msg = TwistStamped()\n"
-    "    msg.header.stamp = node.get_clock().now().to_msg()\n"
-    "    pub.publish(msg)\n"
-    "node.create_timer(0.1, tick)\n"
-    "rclpy.spin(node)\n"
-)
-
-
 def _first_line(env: dict[str, str], *args: str) -> None:
     """Run a streaming `ros2` command until its first line, then press Ctrl-C."""
     import signal
@@ -260,7 +246,7 @@ def main() -> None:
         _terminal(env, "node", "list")  # the daemon answers
         _every_verb(env, runs)
         _not_found(env, max(3, runs // 3))
-        stamped = session.spawn([sys.executable, "-c", STAMPED], name="stamped")
+        stamped = session.spawn([sys.executable, str(STAMPED)], name="stamped")
         try:
             assert wait_until(lambda: client().node.count_publishers("/stamped") >= 1, 15)
             time.sleep(7.0)  # settled again: no process of the domain younger than 6 s

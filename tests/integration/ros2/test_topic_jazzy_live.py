@@ -8,7 +8,7 @@ import sys
 import time
 
 import pytest
-from ros2_golden import console_env, reset_parameters, run_api, run_console, start_node
+from ros2_golden import GOLDEN, console_env, reset_parameters, run_api, run_console, start_node
 from ros2_golden_part2 import interrupt_api, interrupt_console
 
 from course_lib.core.waiting import wait_until
@@ -16,22 +16,8 @@ from course_lib.ros2.api import nodes_and_params as api
 
 pytestmark = pytest.mark.ros
 
-STAMPED = (
-    "import rclpy\n"
-    "from geometry_msgs.msg import TwistStamped\n"
-    "rclpy.init()\n"
-    "node = rclpy.create_node('stamped_talker')\n"
-    "pub = node.create_publisher(TwistStamped, '/stamped', 10)\n"
-    "def tick():\n"
-    "    msg = TwistStamped()\n"
-    "    msg.header.stamp = node.get_clock().now().to_msg()\n"
-    "    pub.publish(msg)\n"
-    "node.create_timer(0.1, tick)\n"
-    "try:\n"
-    "    rclpy.spin(node)\n"
-    "except KeyboardInterrupt:  # the test stops it with Ctrl-C\n"
-    "    pass\n"
-)
+STAMPED = GOLDEN / "nodes" / "stamped_talker.py"  # /stamped, TwistStamped, 10 Hz
+
 # ros2topic's two lines, each second (its test_cli.py's patterns, anchored)
 DELAY_LINES = re.compile(
     r"(average delay: \d+\.\d{3}\n\tmin: \d+\.\d{3}s max: \d+\.\d{3}s "
@@ -44,7 +30,7 @@ TWIST_ZERO = "b'\\x00\\x01\\x00\\x00" + "\\x00" * 48 + "'\n---\n"  # 52 B: heade
 def nodes(ros_session):  # type: ignore[no-untyped-def]
     children = [
         start_node(ros_session, "param_vel_node.py", "param_vel_node"),
-        ros_session.spawn([sys.executable, "-c", STAMPED], name="stamped_talker"),
+        ros_session.spawn([sys.executable, str(STAMPED)], name="stamped_talker"),
     ]
     assert wait_until(lambda: api.client().node.count_publishers("/stamped") >= 1, 15)
     yield
