@@ -11,7 +11,7 @@ STAMP_ROS2 := $(VENV)/.ros2-launcher
 # installs them by glob).
 ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -name CMakeLists.txt -o -name '*.in' -o -name '*.msg' -o -name '*.srv' -o -name '*.action' -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
 
-.PHONY: lab setup hub test test-fast soak bench notebooks check-config lint format clean doctor stop smoke-python
+.PHONY: lab setup hub test test-fast soak bench book notebooks check-config lint format clean doctor stop smoke-python
 
 lab: setup  ## Check config/, then start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
 	$(PY) -m course_lib lab $(EXTRA)
@@ -35,6 +35,9 @@ soak: setup  ## A long random walk through the lessons in one lab at a person's 
 
 bench: setup  ## Print the course's speed and memory figures
 	$(PY) -m bench
+
+book: setup  ## Build the course as a static site, build/book/html/index.html (ARGS=--rerecord runs the driving lessons again)
+	$(PY) -m course_lib.book $(ARGS)
 
 notebooks: setup  ## Check config/, render the lessons from it, re-execute them (ARGS="--all", "--config DIR", names; ARGS=--help)
 	$(PY) -m course_lib notebooks $(ARGS)

@@ -1,9 +1,10 @@
 """Write an instructor file's comments from its schema: meaning, allowed range, default (pure).
 
-The comments next to every key of config/*.yaml and the README's table of settings come from
-the same `setting(help=..., ge=..., ...)` declarations the validator checks, so they cannot
-drift apart: `make check-config ARGS=--write-comments` rewrites the files' comments keeping
-their values, and a test checks that the shipped files are exactly what this module writes.
+The comments next to every key of config/*.yaml and the table of settings in
+book/guides/instructor-settings.md come from the same `setting(help=..., ge=..., ...)`
+declarations the validator checks, so they cannot drift apart: `make check-config
+ARGS=--write-comments` rewrites the files' comments keeping their values, and a test checks
+that the shipped files are exactly what this module writes.
 """
 
 from __future__ import annotations
@@ -102,7 +103,7 @@ def commented_yaml(settings: Any, header: str) -> str:
 
 
 def settings_rows(file: str, schema: type, prefix: str = "") -> list[str]:
-    """Return the README table's rows for `schema`: key, meaning, allowed values, default."""
+    """Return the settings table's rows for `schema`: key, meaning, allowed values, default."""
     rows = []
     hints = typing.get_type_hints(schema)
     for field in dataclasses.fields(schema):

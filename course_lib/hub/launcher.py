@@ -131,7 +131,8 @@ def _wall_sockets(port: int) -> tuple[bool, str]:
         print(
             f"The domain wall is off: this host gives no learner a network of their own "
             f"({problem}); another account that sets a learner's ROS_DOMAIN_ID reaches their "
-            "nodes, and their lab's ports answer every account (README: A class on JupyterHub)."
+            "nodes, and their lab's ports answer every account (book/guides/"
+            "class-on-jupyterhub.md: What it does not protect against)."
         )
         return False, ""
     run = Path("/run") if Path("/run").is_dir() else Path(tempfile.gettempdir())

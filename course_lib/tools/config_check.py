@@ -26,8 +26,8 @@ __all__ = [
     "SCHEMAS",
     "ConfigReport",
     "check_config",
-    "readme_rows",
     "require_valid_config",
+    "settings_table_rows",
     "write_comments",
 ]
 
@@ -76,8 +76,9 @@ def write_comments(folder: Path | None = None) -> list[Path]:
     return changed
 
 
-def readme_rows() -> list[str]:
-    """Return the README's table of settings: one row per key of every file in SCHEMAS."""
+def settings_table_rows() -> list[str]:
+    """Return the table of settings in book/guides/instructor-settings.md: one row per key of
+    every file in SCHEMAS."""
     head = ["| File | Key | Meaning | Allowed | Default |", "| --- | --- | --- | --- | --- |"]
     return head + [row for name, schema in SCHEMAS.items() for row in settings_rows(name, schema)]
 

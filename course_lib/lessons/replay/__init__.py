@@ -19,6 +19,7 @@ __all__ = [
     "replay_dir",
     "save_replay",
     "show_replay",
+    "speed_picture",
     "start_recording",
 ]
 
@@ -39,6 +40,13 @@ def save_replay(lesson: Any) -> ReplayLink | None:
     settings = world.settings if world is not None else None
     plot = lesson.state.get("speed_plot")
     return lesson.replay.save(plot=plot, settings=settings)
+
+
+def speed_picture(lesson: Any) -> str | None:
+    """Return `lesson`'s speed plot as SVG, as its replay draws it (None: nothing recorded)."""
+    if lesson.replay is None:
+        return None
+    return lesson.replay.speed_picture(plot=lesson.state.get("speed_plot"))
 
 
 def show_replay(lesson: Any) -> None:

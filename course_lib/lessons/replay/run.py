@@ -128,24 +128,31 @@ class LessonRun:
         for old in others[KEEP - 1 :]:
             old.unlink(missing_ok=True)
 
-    def save(self, *, plot: Any = None, settings: Any = None) -> ReplayLink | None:
-        """Write the run's page (None if no pose was recorded); return its link."""
+    def speed_picture(self, *, plot: Any = None, run: Any = None) -> str:
+        """Return the run's speed plot as SVG: the lesson's own plot's samples and marks when
+        it showed one, else the run's /odom speeds and the driven node's changes."""
         from ...notebook.widgets.speed_summary import speed_summary
-        from ...sim.view.run_log import replay_frames
-        from ...viz.replay import write_replay
         from ...viz.speed_svg import speed_svg
 
-        run = self.log.run(self.since)
-        if not run:
-            return None
         if plot is not None:
             samples, marks = plot.snapshot()
         else:
+            run = self.log.run(self.since) if run is None else run
             samples = [(s.time_s, s.speed_mps) for s in run]
             with self._lock:
                 marks = list(self.marks)
         title = f"Robot speed from /odom · changes of {self.node}"
-        svg = speed_svg(samples, marks, title=title, summary=speed_summary(samples, marks))
+        return speed_svg(samples, marks, title=title, summary=speed_summary(samples, marks))
+
+    def save(self, *, plot: Any = None, settings: Any = None) -> ReplayLink | None:
+        """Write the run's page (None if no pose was recorded); return its link."""
+        from ...sim.view.run_log import replay_frames
+        from ...viz.replay import write_replay
+
+        run = self.log.run(self.since)
+        if not run:
+            return None
+        svg = self.speed_picture(plot=plot, run=run)
         model = _model(settings)
         path = write_replay(
             self._target(), model, replay_frames(model, run), fps=FPS, plot_svg=svg

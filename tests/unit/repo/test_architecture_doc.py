@@ -1,4 +1,4 @@
-"""docs/ARCHITECTURE.md is true to the code: every path it names exists, and every folder of
+"""book/guides/architecture.md is true to the code: every path it names exists, and every folder of
 course_lib (code or data) is named in it."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from pathlib import Path
 
 from course_lib.core.paths import REPO_ROOT
 
-DOC = REPO_ROOT / "docs" / "ARCHITECTURE.md"
+DOC = REPO_ROOT / "book" / "guides" / "architecture.md"
 PACKAGE = REPO_ROOT / "course_lib"
 FILE_SUFFIXES = (".py", ".md", ".yaml", ".yml", ".json", ".toml", ".ipynb", ".xml", ".cmake")
 CODE_SPAN = re.compile(r"`([^`\s]+)`")
@@ -43,7 +43,7 @@ def _candidates(token: str) -> list[Path]:
 def _exists_somewhere(token: str) -> bool:
     """A bare `name/` or `name.py` names a folder or file of that name anywhere in the code."""
     name = token.rstrip("/")
-    places = [PACKAGE, REPO_ROOT / "tests", REPO_ROOT / "docs", REPO_ROOT / "config"]
+    places = [PACKAGE, REPO_ROOT / "tests", REPO_ROOT / "book", REPO_ROOT / "config"]
     return any(
         any(p for p in place.rglob(name) if "__pycache__" not in p.parts) for place in places
     )

@@ -33,10 +33,12 @@ def test_the_pythons_ci_proves_are_accepted(
 
 
 def test_claims_agree_everywhere() -> None:
-    """README, pyproject and environment.txt claim what the check accepts: 3.11 and 3.12."""
+    """README, the getting-started guide, pyproject and environment.txt claim what the check
+    accepts: 3.11 and 3.12."""
     root = SCRIPT.parents[1]
-    readme = (root / "README.md").read_text(encoding="utf-8")
-    assert "CPython 3.11 or 3.12" in readme and "3.10" not in readme
+    for page in ("README.md", "book/guides/getting-started.md"):
+        text = (root / page).read_text(encoding="utf-8")
+        assert "CPython 3.11 or 3.12" in text and "3.10" not in text, page
     assert 'requires-python = ">=3.11,<3.13"' in (root / "pyproject.toml").read_text()
     header = (root / "environment.txt").read_text().split("\n\n", 1)[0]
     assert "CPython 3.11-3.12" in header and "3.10-" not in header

@@ -1,4 +1,4 @@
-"""docs/MISTAKES.md, the catalogue of learners' mistakes: every row names at least one test,
+"""book/guides/mistakes.md, the catalogue of learners' mistakes: every row names at least one test,
 and every test it names exists (a `def test_...` in the named file)."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import pytest
 
 from course_lib.core.paths import REPO_ROOT
 
-CATALOGUE = REPO_ROOT / "docs" / "MISTAKES.md"
+CATALOGUE = REPO_ROOT / "book" / "guides" / "mistakes.md"
 NODE_ID = re.compile(r"(tests/[\w/]+\.py)::(\w+)(\[[^\]|]*\])?")
 PACED = "## Lesson 7 and 11: measuring at a person's pace"
 

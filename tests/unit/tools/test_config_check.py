@@ -17,7 +17,7 @@ from course_lib.config.simulation import SimulationSettings, StartPose
 from course_lib.config.trip import MAX_TRAVEL_M, answer_trip, wrong_trip
 from course_lib.core.paths import CONFIG_DIR, CONFIG_DIR_ENV, NOTEBOOKS_DIR, REPO_ROOT
 from course_lib.lessons.texts import TEMPLATES, render_cells, settings_used
-from course_lib.tools.config_check import HEADERS, check_config, readme_rows
+from course_lib.tools.config_check import HEADERS, check_config, settings_table_rows
 
 
 def _config(tmp_path: Path, name: str, old: str, new: str) -> Path:
@@ -145,11 +145,12 @@ def test_the_shipped_comments_are_what_the_schema_writes() -> None:
         assert shipped == written, f"{name}: run `make check-config ARGS=--write-comments`"
 
 
-def test_the_readme_table_lists_every_setting_with_its_range() -> None:
-    readme = (REPO_ROOT / "README.md").read_text()
-    missing = [row for row in readme_rows() if row not in readme]
+def test_the_guide_table_lists_every_setting_with_its_range() -> None:
+    guide = (REPO_ROOT / "book" / "guides" / "instructor-settings.md").read_text()
+    missing = [row for row in settings_table_rows() if row not in guide]
     assert not missing, (
-        "README.md lacks these rows (from course_lib.tools.config_check):\n" + "\n".join(missing)
+        "book/guides/instructor-settings.md lacks these rows (course_lib.tools.config_check):\n"
+        + "\n".join(missing)
     )
 
 

@@ -1,4 +1,5 @@
-"""The README's promise about restarts says what happens to exercise attempts (they are kept)."""
+"""The getting-started guide's promise about restarts says what happens to exercise attempts
+(they are kept)."""
 
 from __future__ import annotations
 
@@ -6,11 +7,11 @@ from pathlib import Path
 
 from course_lib.lessons.skills.attempts import ATTEMPTS_FILE, AttemptLog
 
-README = Path(__file__).resolve().parents[4] / "README.md"
+GUIDE = Path(__file__).resolve().parents[4] / "book" / "guides" / "getting-started.md"
 
 
-def test_the_readme_says_attempts_outlive_a_restart_and_where_they_are_kept() -> None:
-    text = " ".join(README.read_text(encoding="utf-8").split())
+def test_the_guide_says_attempts_outlive_a_restart_and_where_they_are_kept() -> None:
+    text = " ".join(GUIDE.read_text(encoding="utf-8").split())
     assert "Restart Kernel and Run All gives the results of a first run in everything but" in text
     assert f"notebooks/my_files/{ATTEMPTS_FILE}" in text
 

@@ -24,6 +24,7 @@ import yaml
 REPO = Path(__file__).resolve().parents[4]
 DEPLOY = REPO / "deploy"
 KUBE = DEPLOY / "kubernetes"
+GUIDE = REPO / "book" / "guides" / "class-on-kubernetes.md"  # how to deploy, what was tested
 IMAGE_COURSE = "/opt/ros2-params-course"
 IMAGE_PYTHON = f"{IMAGE_COURSE}/.venv/bin/python"
 LOCAL_TAIL = ["-m", "course_lib", "hub-lab"]  # after the learner's python, as the local hub
@@ -196,10 +197,9 @@ def test_the_chart_is_pinned_and_its_hub_runs_the_images_jupyterhub(values) -> N
     chart = yaml.safe_load((KUBE / "chart.yaml").read_text())
     version = chart["version"]
     assert re.fullmatch(r"\d+\.\d+\.\d+", version), "a released chart, not a range"
-    readme = (REPO / "README.md").read_text()
-    section = readme.split("## A class on Kubernetes (Zero to JupyterHub)", 1)[1]
+    guide = GUIDE.read_text()
     header = (KUBE / "values.yaml").read_text()
-    for text in (section, header):
+    for text in (guide, header):
         installs = re.findall(r"helm upgrade --install[^\n]*(?:\\\n[^\n]*)*", text)
         assert installs, "an install command"
         assert all(f"--version {version}" in cmd for cmd in installs), installs
@@ -212,7 +212,7 @@ def test_the_chart_is_pinned_and_its_hub_runs_the_images_jupyterhub(values) -> N
     assert re.search(pins_install, dockerfile), "the image installs image-pins.txt"
 
 
-def test_network_policy_is_on_and_the_readme_says_the_plugin_must_enforce_it(
+def test_network_policy_is_on_and_the_guide_says_the_plugin_must_enforce_it(
     values, progress
 ) -> None:
     policies = [
@@ -227,8 +227,7 @@ def test_network_policy_is_on_and_the_readme_says_the_plugin_must_enforce_it(
     selected = progress["NetworkPolicy"]["spec"]["podSelector"]["matchLabels"]
     pod = progress["Deployment"]["spec"]["template"]["metadata"]["labels"]
     assert selected.items() <= pod.items(), "the policy selects the service's pod"
-    section = (REPO / "README.md").read_text().split("## A class on Kubernetes", 1)[1]
-    assert "network plugin must enforce NetworkPolicy" in " ".join(section.split())
+    assert "network plugin must enforce NetworkPolicy" in " ".join(GUIDE.read_text().split())
 
 
 def test_singleuser_runs_the_local_hubs_command(values, dockerfile) -> None:
@@ -376,13 +375,12 @@ def test_image_copies_paths_that_exist_and_runs_as_the_learner(dockerfile) -> No
     assert "HOME=/home/jovyan" in env
 
 
-def test_readme_section_is_there() -> None:
-    readme = (REPO / "README.md").read_text()
-    heading = "## A class on Kubernetes (Zero to JupyterHub)"
-    assert heading in readme
-    section = readme.split(heading, 1)[1]
+def test_the_guide_names_the_files_and_the_readme_links_it() -> None:
+    guide = GUIDE.read_text()
+    assert guide.startswith("# A class on Kubernetes (Zero to JupyterHub)\n")
+    assert "book/guides/class-on-kubernetes.md" in (REPO / "README.md").read_text()
     for path in ("deploy/kubernetes/Dockerfile", "values.yaml", "progress.yaml", "capacity"):
-        assert path in section
+        assert path in guide
 
 
 # --- the helpers fail on broken inputs --------------------------------------------------------
