@@ -59,7 +59,7 @@ def stage_sources(src: Path, recorded: dict[int, Recording]) -> None:
         shutil.copyfile(recording.replay, replays / recording.replay.name)
 
 
-def _sphinx(src: Path, site: Path, doctrees: Path) -> str:
+def run_sphinx(src: Path, site: Path, doctrees: Path) -> str:
     """Run Sphinx's HTML builder; return its warnings (empty: none)."""
     from sphinx.cmd.build import build_main
 
@@ -93,7 +93,7 @@ def build_book(
     shutil.rmtree(site, ignore_errors=True)
     shutil.rmtree(out / "doctrees", ignore_errors=True)
     stage_sources(out / "src", recorded)
-    warnings = _sphinx(out / "src", site, out / "doctrees")
+    warnings = run_sphinx(out / "src", site, out / "doctrees")
     broken = broken_links(site) if site.is_dir() else []
     return BookBuild(site, warnings, broken, time.monotonic() - started)
 
