@@ -22,7 +22,7 @@ from .lesson_pages import REPLAYS_DIR, lesson_page
 from .links import BrokenLink, broken_links
 from .recording import Recording, recordings
 
-__all__ = ["BOOK_SOURCES", "DEFAULT_OUT", "BookBuild", "build_book", "stage_sources"]
+__all__ = ["BOOK_SOURCES", "DEFAULT_OUT", "BookBuild", "build_book", "run_sphinx", "stage_sources"]
 
 BOOK_SOURCES = REPO_ROOT / "book"
 DEFAULT_OUT = REPO_ROOT / "build" / "book"
