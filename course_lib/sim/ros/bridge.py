@@ -50,6 +50,9 @@ _log = logging.getLogger(__name__)
 # from every entity of its nodes at each wake (nine nodes' parameter services, in Python), so
 # this node waits in an executor and thread of its own: 0.019 -> 0.008 cores while driving.
 _DRIVE_NODE = "turtlebot3_diff_drive"
+# A world at rest sleeps through the points nobody reads (Bridge._doze), at most this
+# long: the course's samples come every 0.1 s anyway, and the pacer re-anchors past 0.25 s.
+_DOZE_S = 0.1
 
 
 class Bridge:
@@ -79,6 +82,8 @@ class Bridge:
         self._inputs: collections.deque[tuple[str, Any]] = collections.deque()
         self._wake = threading.Event()
         self._stop = threading.Event()
+        self._dozing = False  # the loop sleeps through points nobody reads (the robot rests)
+        self._lagging = False  # ... and then catches up with the wall clock
         self.spin_error: BaseException | None = None  # why the ROS thread stopped, if it did
         self._publishers()
         mujoco_node = self.nodes["mujoco"]
@@ -152,8 +157,12 @@ class Bridge:
 
     def _on_cmd_vel(self, msg: Twist) -> None:
         # Applied at the loop's next step, as Gazebo's drive applies it at its next update: no
-        # early wake, which would step the physics ahead of the wall clock and publish early.
-        self._inputs.append(("cmd", (msg.linear.x, msg.angular.z)))
+        # early wake, which would step the physics ahead of the wall clock and publish early
+        # (but a dozing loop, behind the wall clock, wakes to catch up to it and apply it).
+        twist = (msg.linear.x, msg.angular.z)
+        self._inputs.append(("cmd", twist))
+        if self._dozing and twist != self.sim.command_twist:
+            self._wake.set()  # a new command to a resting robot: catch up, then apply it
 
     def _on_reset(self, msg: UInt32) -> None:
         self._inputs.append(("reset", msg.data))
@@ -240,20 +249,56 @@ class Bridge:
         while not self._stop.is_set():
             if max_sim_time_s is not None and self.sim.time >= max_sim_time_s:
                 break
-            self._apply_inputs()
+            if self._lagging:  # after a doze: inputs wait until the points before them are done
+                self._lagging = not self.paused and self._overdue(self.sim.time + wake_period / 2)
+            if not self._lagging:
+                self._apply_inputs()
             if self.paused:
                 self._flush_samples()
                 self._wake.wait(0.1)
                 self._wake.clear()
                 continue
             steps = schedule.steps_to_next()
-            self.sim.step(steps)
+            self.sim.advance(steps)  # a robot at rest with no command: only time passes
             self._publish(schedule.advance(steps))
             if self.viewer is not None and view.due(time.monotonic()):
                 self.viewer.update(self.sim.data)
-            delay = self.pacer.delay(self.sim.time, time.monotonic())
+            ahead = 0 if self._lagging else self._doze(schedule)
+            delay = self.pacer.delay(self.sim.time + ahead * self.sim.timestep, time.monotonic())
             if delay > 0 and self._wake.wait(delay):
                 self._wake.clear()
+            self._dozing = False
+
+    def _overdue(self, sim_time: float) -> bool:
+        """Return True if simulated `sim_time` is already due on the wall clock (paced only)."""
+        paced = self.pacer.real_time_factor > 0
+        return paced and self.pacer.delay(sim_time, time.monotonic()) == 0
+
+    def _doze(self, schedule: Schedule) -> int:
+        """Return how many steps the loop may sleep through (0: wake at the next point).
+
+        While the robot rests (sim.advance skips its physics) and nothing that is read falls
+        due, the points in between publish nothing: the loop sleeps until the one before the
+        next that is read, then takes them back to back, so each message leaves when it
+        would have. A new command or a reset wakes it early (it catches up first).
+        """
+        camera = self.camera is not None and self.camera.wanted
+        if not self.sim.still or self.paused or camera or self.pacer.real_time_factor <= 0:
+            return 0
+        self._dozing = True  # before looking at the inputs: a command from now on wakes us
+        if self._inputs:
+            self._dozing = False
+            return 0
+        limit = round(_DOZE_S / self.sim.timestep)
+        read = [name for name, pub in self.pub.items() if pub.get_subscription_count()]
+        due = [schedule.steps_until(read) if read else limit]
+        if self._samples.get_subscription_count():
+            rows_left = self._batch - len(self._rows) // len(FIELDS)
+            odom = schedule.steps_until(["odom"]) + (rows_left - 1) * schedule.periods["odom"]
+            due.append(odom)
+        ahead = max(0, min([limit, *due]) - schedule.steps_to_next())
+        self._lagging = self._dozing = ahead > 0
+        return ahead
 
     def close(self) -> None:
         """Stop spinning and destroy the nodes (the caller shuts the context down)."""

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 
 __all__ = ["Cadence", "Pacer", "Schedule"]
 
@@ -54,6 +54,10 @@ class Schedule:
     def steps_to_next(self) -> int:
         """Return how many physics steps to take until the next stream is due (>= 0)."""
         return max(0, min(self._next.values()) - self._step)
+
+    def steps_until(self, names: Iterable[str]) -> int:
+        """Return how many physics steps until the first of `names` is next due (>= 0)."""
+        return max(0, min(self._next[name] for name in names) - self._step)
 
     def advance(self, steps: int) -> list[str]:
         """Record `steps` steps taken; return the streams now due, in a stable order."""

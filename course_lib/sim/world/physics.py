@@ -16,6 +16,11 @@ from .model import BASE_BODY, WHEEL_ACTUATORS, WHEEL_JOINTS, build_model, scan_s
 __all__ = ["ImuReading", "Simulation"]
 
 _SENSORS_OFF = int(mujoco.mjtDisableBit.mjDSBL_SENSOR)
+# At rest: every joint slower than this (m/s, rad/s) and accelerating less than _REST_QACC.
+# A robot left still settles below 1e-8 and 1e-6 within 0.5 s of simulated time (its numbers
+# then wander at the solver's noise, ~5e-10 and ~1e-7); a reset's first step has qacc ~40.
+_REST_QVEL = 1e-7
+_REST_QACC = 1e-5
 
 
 def _vector(values: Any) -> tuple[float, float, float]:
@@ -57,6 +62,7 @@ class Simulation:
         }
         self._imu_site = self.model.site("imu_link").id
         self.command_twist = (0.0, 0.0)
+        self.still = False  # at rest since the last step, and nothing changed since (advance)
         mujoco.mj_forward(self.model, self.data)
 
     def _measure_drive(self) -> DiffDrive:
@@ -77,6 +83,8 @@ class Simulation:
 
     def command(self, linear_mps: float, angular_radps: float) -> None:
         """Set the body twist to follow (like a /cmd_vel message); held until the next one."""
+        if (linear_mps, angular_radps) != self.command_twist:
+            self.still = False
         self.command_twist = (float(linear_mps), float(angular_radps))
         left, right = self.drive.wheel_speeds(*self.command_twist)
         self.data.ctrl[self._actuators[0]] = left
@@ -84,7 +92,31 @@ class Simulation:
 
     def step(self, steps: int = 1) -> None:
         """Advance the physics by `steps` fixed timesteps."""
+        self.still = False
         mujoco.mj_step(self.model, self.data, nstep=steps)
+
+    def advance(self, steps: int) -> None:
+        """Advance by `steps` timesteps; a robot at rest with no command only sees time pass.
+
+        Its physics would leave it where it is (within the solver's noise, 1e-10 m/s): the
+        running world skips those steps, which cost a still lab about 0.01 cores. A new
+        command or a reset (qacc of a robot not yet settled) makes it step again.
+        """
+        if not self.still:
+            self.step(steps)
+            self.still = self.at_rest()
+            return
+        timestep = self.model.opt.timestep
+        for _ in range(steps):  # MuJoCo's own sum, step by step: the same stamps as stepping
+            self.data.time += timestep
+
+    def at_rest(self) -> bool:
+        """Return True if the robot has no command and neither moves nor accelerates."""
+        return (
+            self.command_twist == (0.0, 0.0)
+            and float(np.max(np.abs(self.data.qvel))) < _REST_QVEL
+            and float(np.max(np.abs(self.data.qacc))) < _REST_QACC
+        )
 
     def run_for(self, seconds: float) -> None:
         """Advance by the whole number of steps closest to `seconds` of simulated time."""
@@ -96,6 +128,7 @@ class Simulation:
         mujoco.mj_resetData(self.model, self.data)
         if keep_time:
             self.data.time = now
+        self.still = False
         self.command(0.0, 0.0)
         mujoco.mj_forward(self.model, self.data)
 

@@ -87,6 +87,28 @@ def test_reset_returns_to_the_start_pose_and_keeps_time() -> None:
     assert sim.command_twist == (0.0, 0.0)
 
 
+def test_a_robot_at_rest_only_sees_time_pass(sim: Simulation) -> None:
+    stepped = Simulation()
+    for world in (sim, stepped):
+        world.run_for(1.0)  # settled on its wheels
+    assert sim.at_rest()
+    for _ in range(100):
+        sim.advance(10)
+        stepped.step(10)
+    assert sim.still and sim.time == stepped.time  # the same sum of timesteps
+    assert abs(sim.data.qpos - stepped.data.qpos).max() < 1e-8  # the physics would not move it
+    sim.command(0.2, 0.0)
+    sim.advance(250)
+    assert not sim.still and sim.twist()[0] > 0.1  # a command makes it step again
+
+
+def test_a_reset_robot_settles_before_it_rests(sim: Simulation) -> None:
+    sim.reset()
+    assert not sim.at_rest()  # placed above the floor: it falls onto its wheels first
+    sim.advance(10)
+    assert not sim.still
+
+
 def test_imu_feels_gravity_and_the_turn(sim: Simulation) -> None:
     sim.command(0.0, 0.5)
     sim.run_for(1.0)

@@ -79,3 +79,12 @@ def test_schedule_steps_to_each_due_stream() -> None:
     assert due.count(["odom"]) == 9 and due[-1] == ["odom", "scan"]
     assert schedule.time_s == pytest.approx(0.2)
     assert schedule.rate_hz("scan") == pytest.approx(5.0)
+
+
+def test_schedule_says_how_far_the_next_of_some_streams_is() -> None:
+    schedule = Schedule({"odom": 50.0, "scan": 5.0}, 0.002)
+    schedule.advance(0)
+    assert schedule.steps_until(["scan"]) == 100
+    assert schedule.steps_until(["odom", "scan"]) == 10
+    schedule.advance(schedule.steps_to_next())
+    assert schedule.steps_until(["scan"]) == 90
