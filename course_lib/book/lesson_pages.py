@@ -11,6 +11,8 @@ from __future__ import annotations
 import re
 from typing import Any
 
+from ..core.files.live_outputs import PLACEHOLDERS
+from ..lessons.catalogue import LESSONS
 from ..lessons.catalogue.spec import LessonSpec
 from .recording import Recording
 
@@ -24,7 +26,21 @@ _STORED_REPLAY = re.compile(
 )
 VIEW_CALL = "lesson.world()"
 PLOT_CALL = "lesson.speed_plot()"
-REPLAY_HEIGHT_PX = 620
+REPLAY_HEIGHT_PX = 760  # the 3D view, its controls and the speed plot at a desktop's width
+SVG_NS = "http://www.w3.org/2000/svg"
+# What a live output's stored placeholder says in the book, which runs nothing.
+BOOK_PLACEHOLDERS = {
+    PLACEHOLDERS["view"]: (
+        "When you run this lesson, this cell shows the robot live in 3D, which you can turn "
+        "and zoom. The book runs nothing: lessons "
+        + ", ".join(str(spec.number) for spec in LESSONS if spec.driven_node)
+        + " show a 3D replay of a real run instead."
+    ),
+    PLACEHOLDERS["widget"]: (
+        "When you run this lesson, this cell shows a live widget that follows the running "
+        "nodes. The book runs nothing, so it cannot show it here."
+    ),
+}
 
 
 def _run_this_lesson(spec: LessonSpec) -> str:
@@ -62,6 +78,8 @@ def _replay_output(spec: LessonSpec, recording: Recording) -> dict[str, Any]:
 
 def _speed_output(spec: LessonSpec, recording: Recording) -> dict[str, Any]:
     svg = recording.speed.read_text(encoding="utf-8")
+    if "xmlns=" not in svg.split(">", 1)[0]:  # drawn inline in a lab; an <img> needs it
+        svg = svg.replace("<svg", f'<svg xmlns="{SVG_NS}"', 1)
     return {
         "output_type": "display_data",
         "metadata": {},
@@ -70,6 +88,15 @@ def _speed_output(spec: LessonSpec, recording: Recording) -> dict[str, Any]:
             "text/plain": f"Lesson {spec.number}'s speed plot (recorded run)",
         },
     }
+
+
+def _for_readers(output: Any) -> None:
+    """Reword a live output's placeholder ("run this cell") for a reader of the book."""
+    data = output.get("data", {})
+    text = data.get("text/plain")
+    text = "".join(text) if isinstance(text, list) else text
+    if text in BOOK_PLACEHOLDERS:
+        data["text/plain"] = BOOK_PLACEHOLDERS[text]
 
 
 def _relink(output: Any, recording: Recording | None) -> None:
@@ -102,5 +129,6 @@ def lesson_page(nb: Any, spec: LessonSpec, recording: Recording | None) -> Any:
             alt = f"Lesson {spec.number}: the robot's speed from /odom over a real run"
             cell.metadata["mystnb"] = {"image": {"alt": alt}}
         for output in cell.outputs:
+            _for_readers(output)
             _relink(output, recording)
     return nb

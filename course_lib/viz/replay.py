@@ -213,12 +213,14 @@ def replay_html(
         playhead = _PLAYHEAD_JS % {"plot": PLOT_ID, "head": PLAYHEAD_ID, "start": start}
     return (
         '<!DOCTYPE html>\n<html lang="en">\n<head><meta charset=utf-8>'
-        f"<title>{html.escape(title)}</title>\n<style>body {{margin: 0}} #meshcat-pane "
+        f"<title>{html.escape(title)}</title>\n<style>body {{margin: 0; background: #fff; "
+        "color: #000; color-scheme: light}} #meshcat-pane "
         f"{{width: 100vw; height: {pane_height}; overflow: hidden; position: relative}} "
         "#plot-pane {text-align: center} #plot-pane svg {max-width: 100%; height: auto} "
         "#needs-scripts {position: absolute; top: 40%; width: 100%; text-align: center; "
         "font-family: sans-serif} #replay-bar {font-family: sans-serif; padding: 0.4em; "
-        "display: flex; gap: 0.6em; align-items: center} #replay-time {flex: 1}"
+        "display: flex; flex-wrap: wrap; gap: 0.6em; align-items: center} "
+        "#replay-bar button {min-height: 2.2em} #replay-time {flex: 1; min-width: 8em}"
         "</style></head>\n<body>\n"
         f'<div id="meshcat-pane">{_NEEDS_SCRIPTS}</div>\n{_CONTROLS_HTML % timing}{plot}'
         f"<script>\n{script}\n</script>\n"

@@ -116,6 +116,10 @@ def test_every_page_loads_with_no_console_error_and_its_replay_plays(
         context, page, errors = _open(browser, path.as_uri())
         try:
             name = path.relative_to(book.site).as_posix()
+            for picture in page.locator("article img").all():  # drawn, not a broken image
+                picture.scroll_into_view_if_needed()
+                drawn = picture.evaluate("(i) => i.complete && i.naturalWidth > 0")
+                assert drawn, f"{name}: {picture.get_attribute('alt')} is not drawn"
             if page.locator("iframe.course-replay").count():
                 _replay_plays(page)
                 page.screenshot(path=str(artifacts / f"{path.stem}.png"))
@@ -132,6 +136,7 @@ def test_the_driving_lessons_show_their_replay_and_speed_plot(book: BookBuild) -
         assert "Run this lesson" in html, spec.notebook
         assert (replay in html) == bool(spec.driven_node), spec.notebook
         assert "my_files/replays/" not in html, f"{spec.notebook} links a learner's replay"
+        assert "run this cell to see it" not in html, f"{spec.notebook}: a lab's placeholder"
     lesson7 = (book.site / "lessons" / "07_move_the_robot.html").read_text()
     assert 'alt="Lesson 7: the robot' in lesson7, "the speed plot picture has no text"
 

@@ -119,7 +119,7 @@ def test_without_a_recording_the_self_check_says_no_replay_was_recorded(tmp_path
     assert not any('href="my_files/replays/' in text for text in html)
     assert not any("my_files/replays/" in text for text in html)
     assert any("No replay of this lesson was recorded for this book." in text for text in html)
-    assert "not stored" in str(_code_cell(page, "lesson.world()").outputs)
+    assert "The book runs nothing" in str(_code_cell(page, "lesson.world()").outputs)
 
 
 def test_a_lesson_without_driving_keeps_its_stored_outputs_byte_for_byte() -> None:
