@@ -33,6 +33,14 @@ def test_the_course_lab_settings_start_a_shut_down_notebooks_kernel_without_aski
     assert overrides["@jupyterlab/notebook-extension:tracker"]["autoStartDefaultKernel"] is True
 
 
+def test_the_course_lab_saves_open_notebooks_every_20_seconds() -> None:
+    """What a killed server can lose of a learner's edits (book/guides/getting-started.md)."""
+    option = next(a for a in lab.course_server_options() if "app_settings_dir" in a)
+    overrides = json.loads((Path(option.split("=", 1)[1]) / "overrides.json").read_text())
+    saving = overrides["@jupyterlab/docmanager-extension:plugin"]
+    assert saving == {"autosave": True, "autosaveInterval": 20}
+
+
 @pytest.fixture
 def markers() -> list:
     made: list = []
