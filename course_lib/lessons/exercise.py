@@ -244,7 +244,9 @@ class TravelExercise:
             show_hints=self.lesson.settings.show_hints,
             answer=self.answer(),
         )
-        self.log.add(NAME, verdict.passed)
+        tally = self.log.add(NAME, verdict.passed)
+        if tally.unsaved:  # the verdict still shows, with the one line saying so
+            verdict = dataclasses.replace(verdict, note=tally.unsaved)
         self.attempts.append(verdict)
         from .progress.client import report_attempt
 

@@ -53,8 +53,13 @@ def show_replay(lesson: Any) -> None:
     """Save `lesson`'s replay and show its link; a failure is a one-line note, never raised."""
     from IPython.display import display
 
+    from ...core.files.atomic_files import FileSaveError
+
     try:
         link = save_replay(lesson)
+    except FileSaveError as error:  # a full disk: said in one line, the old replays kept
+        print(f"The replay of this run was not saved: {error.reason}. Try: {error.hint}")
+        return
     except Exception as error:  # the self-check's result matters more than its replay
         _log.exception("saving the replay failed")
         print(f"The replay of this run could not be saved: {error}")

@@ -9,6 +9,7 @@ stops the robot and arms again for the next attempt.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import time
 from typing import Any
 
@@ -107,7 +108,9 @@ class SkillExercise:
             )
         number = self.log.tally(self.name).attempts + 1
         verdict = self._judge(number)
-        self.log.add(self.name, verdict.passed)
+        tally = self.log.add(self.name, verdict.passed)
+        if tally.unsaved:  # the verdict still shows, with the one line saying so
+            verdict = dataclasses.replace(verdict, note=tally.unsaved)
         self.attempts.append(verdict)
         passed = self.lesson.state.setdefault("exercises_passed", set())
         if verdict.passed:

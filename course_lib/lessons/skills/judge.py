@@ -33,9 +33,11 @@ class Verdict:
     message: str
     hint: str = ""
     kind: str = ""  # which mistake, for a failed skill exercise
+    note: str = ""  # one line about the attempt itself (its count could not be saved)
 
     def __repr__(self) -> str:
-        return self.message + (f"\nHint: {self.hint}" if self.hint else "") + "\n"
+        hint = f"\nHint: {self.hint}" if self.hint else ""
+        return self.message + hint + "\n" + (f"{self.note}\n" if self.note else "")
 
 
 class _Words(dict[str, Any]):

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from ...core.errors import CourseError
+from ...core.files.atomic_files import FileSaveError
 from ...core.param_journal import acting_door
 from .controls import control_for, refresh_control
 from .events import changes_of, subscribe_parameter_events
@@ -262,6 +263,11 @@ class ParameterPanel:
 
         try:
             path = self.save()
+        except FileSaveError as error:  # a full disk: the old file is kept, and said so
+            self.log.append_stdout(
+                f"Not saved ({error.shown}): {error.reason}. {error.kept}\nTry: {error.hint}\n"
+            )
+            return
         except (CourseError, ServiceCallError) as error:  # said in the panel, never lost
             self.log.append_stdout(f"Not saved: {error}\n")
             return
