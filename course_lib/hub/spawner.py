@@ -198,12 +198,19 @@ class CourseSpawner(LocalProcessSpawner):
         try:
             await super().stop(now=now)
         finally:
-            if self._relay is not None:
-                self._relay.close()
-                self._relay = None
-            if self.wall:
-                forget_route(Path(self.sockets_dir), self.user.name)
-            self.domains.give_back(self.user.name)
+            self.release()
+
+    def release(self) -> None:
+        """Let go of what the hub holds for the server: the relay into its network (its
+        sockets keep that network alive), its route, its domain id. Run by `stop` and by the
+        post-stop hook: JupyterHub calls no `stop` for a server its poll found dead (killed,
+        crashed), so without the hook the hub kept the relay's sockets until it ended."""
+        if self._relay is not None:
+            self._relay.close()
+            self._relay = None
+        if self.wall:
+            forget_route(Path(self.sockets_dir), self.user.name)
+        self.domains.give_back(self.user.name)
 
     async def stop_leftovers(self) -> None:
         """Run `python -m course_lib stop` as the learner; log what it stopped."""
@@ -282,5 +289,7 @@ async def run_bounded(
 
 
 async def stop_leftovers_hook(spawner: Any) -> None:
-    """JupyterHub's post-stop hook: see CourseSpawner.stop_leftovers."""
+    """JupyterHub's post-stop hook, run after every stop, a server that died on its own
+    included: see CourseSpawner.release and CourseSpawner.stop_leftovers."""
+    spawner.release()
     await spawner.stop_leftovers()

@@ -8,6 +8,9 @@ removed after it.
 from __future__ import annotations
 
 import contextlib
+import ctypes
+import errno
+import fcntl
 import hashlib
 import os
 import pwd
@@ -31,8 +34,11 @@ from course_lib.processes.children import ChildProcess, spawn
 __all__ = [
     "ClassHub",
     "hub_environment",
+    "process_tree",
     "processes_of",
+    "server_pid",
     "server_token",
+    "sockets_in_network",
     "start_prebuild",
     "uid_of",
 ]
@@ -187,6 +193,14 @@ class ClassHub:
         """Return what the hub printed (its own log and JupyterHub's)."""
         return self.process.text()
 
+    def jupyterhub_pid(self) -> int:
+        """Return the pid of JupyterHub itself (`python -m jupyterhub`, the hub's child)."""
+        for pid in process_tree(self.process.pid):
+            with contextlib.suppress(OSError):
+                if b"\0-m\0jupyterhub\0" in Path(f"/proc/{pid}/cmdline").read_bytes():
+                    return pid
+        raise AssertionError(f"JupyterHub is not running:\n{self.log()[-2000:]}")
+
     def login(self, browser: Any, name: str) -> Any:
         """Sign `name` in through the hub's login form in a fresh browser context; return the
         page, on the server the hub started for them."""
@@ -252,3 +266,64 @@ def server_token(name: str) -> str:
                 if item.startswith(b"JUPYTERHUB_API_TOKEN="):
                     return item.split(b"=", 1)[1].decode()
     raise AssertionError(f"no process of {name} holds a hub token")
+
+
+def server_pid(name: str) -> int | None:
+    """Return the pid of `name`'s server as the hub started it (`python -m course_lib
+    hub-lab`, run as `name`), or None when none runs."""
+    for entry in _processes_of(name):
+        with contextlib.suppress(OSError):
+            argv = (entry / "cmdline").read_bytes().split(b"\0")
+            if argv[1:4] == [b"-m", b"course_lib", b"hub-lab"]:
+                return int(entry.name)
+    return None
+
+
+def process_tree(pid: int) -> set[int]:
+    """Return `pid` and every process descending from it."""
+    children: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        with contextlib.suppress(OSError, ValueError, IndexError):
+            if entry.name.isdigit():
+                # the parent is the 2nd field after the command, which may hold spaces
+                parent = int((entry / "stat").read_text().rsplit(")", 1)[1].split()[1])
+                children.setdefault(parent, []).append(int(entry.name))
+    tree: set[int] = set()
+    todo = [pid]
+    while todo:
+        current = todo.pop()
+        tree.add(current)
+        todo.extend(children.get(current, []))
+    return tree
+
+
+_PIDFD_GETFD = 438  # syscall number, one for every architecture (Linux 5.6)
+_SIOCGSKNS = 0x894C  # ioctl: the network namespace of a socket, as a new fd
+
+
+def sockets_in_network(holder: int, network: int) -> int:
+    """Return how many sockets process `holder` has open in the network namespace whose
+    inode is `network` (root: the sockets are copied out of `holder` to be asked). A socket
+    keeps its namespace alive after the last process in it has ended."""
+    libc = ctypes.CDLL(None, use_errno=True)
+    pidfd = os.pidfd_open(holder)
+    found = 0
+    try:
+        for entry in Path(f"/proc/{holder}/fd").iterdir():
+            with contextlib.suppress(FileNotFoundError):  # closed meanwhile
+                if not os.readlink(entry).startswith("socket:"):
+                    continue
+            fd = libc.syscall(_PIDFD_GETFD, pidfd, int(entry.name), 0)
+            if fd < 0:
+                if ctypes.get_errno() == errno.EBADF:  # closed meanwhile
+                    continue
+                raise OSError(ctypes.get_errno(), f"pidfd_getfd of {holder}'s fd {entry.name}")
+            try:
+                namespace = fcntl.ioctl(fd, _SIOCGSKNS)
+                found += os.fstat(namespace).st_ino == network
+                os.close(namespace)
+            finally:
+                os.close(fd)
+    finally:
+        os.close(pidfd)
+    return found

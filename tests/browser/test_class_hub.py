@@ -2,7 +2,8 @@
 
 Each learner signs in with the password `make hub` generated, gets their own server on
 lesson 1, runs lesson 7 and drives their own robot; neither can open the other's lab, view or
-progress; the admin's progress page shows both; stopping one server leaves nothing of it.
+progress; the admin's progress page shows both; stopping one server leaves nothing of it; a
+third learner's server, killed, shows stopped and starts again with their files and progress.
 """
 
 from __future__ import annotations
@@ -10,6 +11,8 @@ from __future__ import annotations
 import json
 import os
 import re
+import signal
+import time
 import urllib.error
 import urllib.request
 from collections.abc import Iterator
@@ -17,13 +20,23 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from class_hub import ClassHub, processes_of, server_token, stop_own_server, uid_of
+from class_hub import (
+    ClassHub,
+    process_tree,
+    processes_of,
+    server_pid,
+    server_token,
+    sockets_in_network,
+    stop_own_server,
+    uid_of,
+)
 from lab_server import ARTIFACTS
-from notebook_ui import run_all_cells, run_cell, show_tab, wait_all_ran
+from notebook_ui import add_cell, run_all_cells, run_cell, show_tab, wait_all_ran
 from terminal import Terminal
 from view import MOVED, VIEW, drive_and_watch
 
 from course_lib.core.waiting import wait_until
+from course_lib.hub.singleuser import LEARNER_FOLDER
 
 pytestmark = [
     pytest.mark.browser,
@@ -35,7 +48,11 @@ pytestmark = [
 
 LEARNERS = ("r2pc-alice", "r2pc-bob", "r2pc-carol")
 ADMIN = "r2pc-teacher"
-ALICE, BOB = LEARNERS[:2]
+ALICE, BOB, CAROL = LEARNERS
+KEPT = "notebooks/my_files/kept.yaml"  # in the learner's folder, the root their server serves
+KEPT_TEXT = "velocity: 0.2\n"
+# the learner's first look at the hub's home page after the kill: seen at 0.4-0.7 s
+STOPPED_SHOWN_S = 15.0
 LESSON_7 = "notebooks/07_move_the_robot.ipynb"
 LANDED: dict[str, str] = {}  # where each learner's first sign-in took them
 
@@ -182,6 +199,131 @@ def test_stopping_one_server_leaves_nothing_of_it_and_spares_the_other(
     assert set(processes_of(ALICE)) >= set(alice_before), "stopping Bob disturbed Alice"
     alice = pages[ALICE]
     assert _view_moves(alice, artifacts) > MOVED, "Alice's robot stopped with Bob's server"
+
+
+def _contents(hub: ClassHub, name: str, path: str, text: str | None = None) -> str:
+    """Save `text` as the file `path` in `name`'s lab through its contents API, as JupyterLab
+    saves a file (the server's own token opens it), or read it; return the file's text."""
+    body = None if text is None else {"type": "file", "format": "text", "content": text}
+    request = urllib.request.Request(
+        f"{hub.url}/user/{name}/api/contents/{path}",
+        data=None if body is None else json.dumps(body).encode(),
+        headers={"Authorization": f"token {server_token(name)}",
+                 "Content-Type": "application/json"},
+        method="GET" if body is None else "PUT",
+    )  # fmt: skip
+    with urllib.request.urlopen(request, timeout=30) as answer:
+        return str(json.loads(answer.read())["content"]) if body is None else str(text)
+
+
+def _progress_row(page: Any, hub: ClassHub, name: str) -> str:
+    """Return `name`'s row on the progress page (the admin's `page`) once it shows a passed
+    lesson (a self-check's record is sent in the background)."""
+
+    def passed_row() -> str:
+        page.goto(f"{hub.url}/services/course-progress/")
+        row = str(page.locator("tr", has_text=name).first.inner_text())
+        return row if "✓ passed" in row else ""
+
+    row = wait_until(passed_row, 30.0, interval=1.0)
+    assert row, f"{name} passed no lesson on the progress page"
+    return row
+
+
+def _busy_lab(page: Any, artifacts: Path, name: str) -> None:
+    """Run lesson 1, where the learner landed (its self-check records their progress), and
+    start a node from it: the server has a kernel, a ROS daemon and a node."""
+    run_all_cells(page)
+    # the lesson's stored prompts ([1]: ...) look like a run that ended: wait for its end
+    passed = re.compile(r"Everything passed \((\d+) of \1\)")
+    page.locator(".jp-NotebookPanel:visible").get_by_text(passed).wait_for(timeout=120_000)
+    wait_all_ran(page, artifacts)
+    add_cell(page, "%ros2 run parameter_tests param_vel")
+    node = lambda: any("/param_vel" in line for line in processes_of(name))  # noqa: E731
+    assert wait_until(node, 30.0), f"no node runs: {processes_of(name)}"
+
+
+# its lab, a few cells, a kill and a start again: 14-15 s on 2 busy cores
+@pytest.mark.timeout(300)
+def test_a_killed_server_shows_stopped_and_starts_again_with_the_learners_files(
+    hub: ClassHub, browser: Any, artifacts: Path, record_property: Any
+) -> None:
+    carol, admin = hub.login(browser, CAROL), hub.login(browser, ADMIN)
+    try:
+        _busy_lab(carol, artifacts, CAROL)
+        _contents(hub, CAROL, KEPT, KEPT_TEXT)
+        recorded = _progress_row(admin, hub, CAROL)
+        killed, old, network = _kill_server(hub, CAROL)
+        killed_at = time.monotonic()
+        _learner_sees_it_stopped(hub, carol, CAROL)
+        record_property("stopped_shown_s", round(time.monotonic() - killed_at, 1))
+        assert time.monotonic() - killed_at < STOPPED_SHOWN_S, "the hub took long to show it"
+        _nothing_left(hub, CAROL, old, network)
+        carol.locator("#start").click()  # "Start My Server"
+        carol.wait_for_url(f"**/user/{CAROL}/lab/tree/**", timeout=180_000)
+        record_property("back_s", round(time.monotonic() - killed_at, 1))
+        assert _contents(hub, CAROL, KEPT) == KEPT_TEXT
+        kept = Path(f"~{CAROL}").expanduser() / LEARNER_FOLDER / KEPT
+        assert kept.stat().st_uid == uid_of(CAROL), "the file is no longer Carol's"
+        assert _progress_row(admin, hub, CAROL) == recorded
+        _only_the_new_server_runs(CAROL, killed)
+    finally:
+        carol.context.close()
+        admin.context.close()
+
+
+def _pids_of(name: str) -> set[int]:
+    return {int(line.split(" ", 1)[0]) for line in processes_of(name)}
+
+
+def _kill_server(hub: ClassHub, name: str) -> tuple[int, set[int], int | None]:
+    """SIGKILL `name`'s server, the process the hub started and polls (`python -m course_lib
+    hub-lab`, which runs jupyterhub-singleuser), and nothing else; return its pid, the pids
+    `name` had and the inode of the lab's network, where the hub relays its API (checked;
+    None without the hub's wall: the lab is in the host's network)."""
+    killed = server_pid(name)
+    assert killed is not None, processes_of(name)
+    network: int | None = os.stat(f"/proc/{killed}/ns/net").st_ino
+    if network == os.stat(f"/proc/{hub.jupyterhub_pid()}/ns/net").st_ino:
+        network = None
+    else:
+        relayed = sockets_in_network(hub.jupyterhub_pid(), network)
+        assert relayed >= 2, f"the hub holds {relayed} sockets in {name}'s lab, not its relay"
+    old = _pids_of(name)
+    os.kill(killed, signal.SIGKILL)
+    return killed, old, network
+
+
+def _nothing_left(hub: ClassHub, name: str, old: set[int], network: int | None) -> None:
+    """Fail if a process of the killed server outlived it (its kernel, daemon, node), or the
+    hub still holds sockets in its network (which keep that network alive)."""
+    # the killed children end at once (tied to it), but an orphan is reaped a moment later
+    left = wait_until(lambda: not old & _pids_of(name), 10.0)
+    assert left, f"the killed server's processes outlived it: {processes_of(name)}"
+    held = 0 if network is None else sockets_in_network(hub.jupyterhub_pid(), network)
+    assert held == 0, f"the hub still holds {held} sockets in the killed lab's network"
+
+
+def _learner_sees_it_stopped(hub: ClassHub, page: Any, name: str) -> None:
+    """Do what a learner whose lab stopped answering does: reload it and read what it says
+    (the proxy routes to the dead server until JupyterHub's poll, every 30 s, notices: "Your
+    server appears to be down. Try restarting it from the hub"; after: "Server not running"),
+    go to the hub's home page (it polls the server first) and find "Start My Server" there,
+    and no "Stop My Server"."""
+    page.goto(f"{hub.url}/user/{name}/lab")
+    said = page.locator("body").inner_text()
+    assert re.search(r"appears to be down|is not running", said), said[:1000]
+    page.goto(f"{hub.url}/hub/home")
+    assert "Start My Server" in page.locator("#start").inner_text()
+    assert page.locator("#stop").count() == 0, "the hub still offers to stop the killed server"
+
+
+def _only_the_new_server_runs(name: str, killed: int) -> None:
+    """Fail unless every process of `name` is their new server or one of its descendants."""
+    server = server_pid(name)
+    assert server is not None and server != killed, processes_of(name)
+    strays = _pids_of(name) - process_tree(server)
+    assert not strays, f"not the new server's: {processes_of(name)} (server {server})"
 
 
 def test_stopping_the_hub_stops_every_learners_server(hub: ClassHub) -> None:
