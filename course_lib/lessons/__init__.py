@@ -29,10 +29,9 @@ def _prepare_ipython() -> None:
     if shell is None:
         return
     shell.extension_manager.load_extension("course_lib.notebook.magics")
-    from ..core.errors import CourseError
-    from .errors import show_course_error
+    from ..notebook.cell_errors import install
 
-    shell.set_custom_exc((CourseError,), show_course_error)
+    install(shell)  # course errors as their two lines; a restarted kernel's slips as hints
 
 
 def start(number: int, *, settings_path: str | None = None) -> Lesson:
