@@ -11,7 +11,7 @@ STAMP_ROS2 := $(VENV)/.ros2-launcher
 # installs them by glob).
 ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -name CMakeLists.txt -o -name '*.in' -o -name '*.msg' -o -name '*.srv' -o -name '*.action' -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
 
-.PHONY: lab setup hub test test-fast soak bench book notebooks check-config lint format clean doctor stop smoke-python
+.PHONY: lab setup hub test test-fast soak chaos bench book notebooks check-config lint format clean doctor stop smoke-python
 
 lab: setup  ## Check config/, then start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
 	$(PY) -m course_lib lab $(EXTRA)
@@ -32,6 +32,9 @@ test-fast: setup  ## Unit tests only (no ROS, milliseconds)
 
 soak: setup  ## A long random walk through the lessons in one lab at a person's pace (WALK_STEPS=100, WALK_SEED=random, WALK_PACE=person|ci|none)
 	WALK_SOAK=1 WALK_STEPS=$(or $(WALK_STEPS),100) WALK_SEED=$(WALK_SEED) WALK_PACE=$(WALK_PACE) $(PY) -m pytest tests/browser/test_lab_random_walk.py -k soak -s
+
+chaos: setup  ## The lessons' random walk in one lab with a fault between steps (CHAOS_FAULTS=100, CHAOS_SEED=random): processes killed or stopped, the page reloaded
+	CHAOS_FAULTS=$(or $(CHAOS_FAULTS),100) CHAOS_SEED=$(CHAOS_SEED) $(PY) -m pytest tests/browser/test_lab_chaos.py -s
 
 bench: setup  ## Print the course's speed and memory figures
 	$(PY) -m bench

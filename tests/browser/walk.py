@@ -29,7 +29,7 @@ from lesson_checks import (
 from pace import MACHINE_PACE, MISTAKES, Pace
 from terminal import Terminal
 
-__all__ = ["Step", "Walker", "walk_settings"]
+__all__ = ["Step", "Walker", "seed_and_count", "walk_settings"]
 
 # Cells a learner may run again at any time, in any state of the lab (never a cell whose
 # answer depends on the cell before it, such as lesson 2's `lesson.stop`).
@@ -52,18 +52,25 @@ RERUNNABLE = (
 OPEN_CHANCE = 0.6  # of opening one more lesson, while one is left to open
 
 
-def walk_settings(default_steps: int, default_seed: int | None = None) -> tuple[int, int]:
-    """Return (seed, steps) from WALK_SEED and WALK_STEPS; without WALK_SEED, `default_seed`,
-    else a random seed."""
-    seed = os.environ.get("WALK_SEED")
-    steps = os.environ.get("WALK_STEPS")
+def seed_and_count(
+    seed_env: str, count_env: str, default_count: int, default_seed: int | None = None
+) -> tuple[int, int]:
+    """Return (seed, count) from the environment's `seed_env` and `count_env`; without a seed
+    there, `default_seed`, else a random seed (printed by the walk, so it replays)."""
+    seed = os.environ.get(seed_env)
+    count = os.environ.get(count_env)
     if seed:
         chosen = int(seed)
     elif default_seed is not None:
         chosen = default_seed
     else:
         chosen = random.SystemRandom().randrange(1_000_000)
-    return chosen, int(steps) if steps else default_steps
+    return chosen, int(count) if count else default_count
+
+
+def walk_settings(default_steps: int, default_seed: int | None = None) -> tuple[int, int]:
+    """Return (seed, steps) from WALK_SEED and WALK_STEPS (see `seed_and_count`)."""
+    return seed_and_count("WALK_SEED", "WALK_STEPS", default_steps, default_seed)
 
 
 def _say(line: str) -> None:

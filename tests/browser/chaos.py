@@ -1,0 +1,170 @@
+"""Faults between a learner's steps (issue 62, `make chaos`): a process of the lab killed or
+stopped, the page reloaded; then the learner's next step, and the lab whole again.
+
+Each fault acts on one process of the lab's own tree (never anything else): the simulation,
+a lesson's node, the `ros2` daemon, a lesson's kernel killed with SIGKILL; the simulation
+stopped for 10 s (SIGSTOP, then SIGCONT: a suspended laptop); the browser page reloaded. After
+it, the learner's next step may say in one line what happened (a course error, never a
+traceback); the learner then does what it says (the lesson's first cell, then Run All), and
+that must be clean. Within 10 s of the next step the lab is whole:
+at most one world, no node name twice, as many /clock publishers as worlds, and no process of
+the lab's ROS domain outside the lab.
+"""
+
+from __future__ import annotations
+
+import os
+import random
+import signal
+import time
+from collections import Counter
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import psutil
+from lab_graph import _plain
+from terminal import Terminal
+from walk import Step, Walker, seed_and_count
+
+__all__ = ["FAULTS", "ChaosWalker", "chaos_settings"]
+
+STOP_S = 10.0  # a suspended laptop
+WHOLE_WITHIN_S = 10.0
+
+_TARGETS: dict[str, Callable[[list[str]], bool]] = {
+    "the simulation": lambda argv: "course_lib.sim" in argv,
+    "a lesson's node": lambda argv: any(
+        a.endswith(("/param_vel", "/descriptor_vel")) for a in argv
+    ),
+    "the ros2 daemon": lambda argv: "course_lib.ros2.command.daemon" in argv,
+    "a lesson's kernel": lambda argv: "course_lib.notebook.kernel_launcher" in argv,
+}
+FAULTS = (
+    "kill the simulation",
+    "kill a lesson's node",
+    "kill the ros2 daemon",
+    "kill a lesson's kernel",
+    "stop the simulation",
+    "reload the page",
+)
+
+
+def chaos_settings(default_faults: int, default_seed: int | None = None) -> tuple[int, int]:
+    """Return (seed, faults) from CHAOS_SEED and CHAOS_FAULTS (see `seed_and_count`)."""
+    return seed_and_count("CHAOS_SEED", "CHAOS_FAULTS", default_faults, default_seed)
+
+
+@dataclass
+class ChaosWalker(Walker):
+    """A walk with one fault between steps; the step after a fault may say what happened."""
+
+    faults: int = 0
+    _after_fault: bool = False
+    _said: bool = False  # the step after a fault said what happened (the learner follows it)
+
+    def _lab_tree(self, what: str) -> list[psutil.Process]:
+        match = _TARGETS[what]
+        found = []
+        for process in psutil.Process(self.ui.lab.process.pid).children(recursive=True):
+            try:
+                if match(process.cmdline()):
+                    found.append(process)
+            except psutil.Error:
+                continue
+        return found
+
+    def fault(self, kind: str, rng: random.Random) -> None:
+        """Bring fault `kind` on the lab; say what it hit (or that there was nothing to hit)."""
+        self.faults += 1
+        action, _, what = kind.partition(" ")
+        if kind == "reload the page":
+            self.log(f"fault {self.faults}: the page is reloaded")
+            self.ui.page.reload(wait_until="load")
+            self.ui.page.wait_for_selector(".jp-Notebook", timeout=120_000)
+            self._after_fault = True
+            return
+        found = self._lab_tree(what)
+        if not found:
+            self.log(f"fault {self.faults}: {kind}: none runs, nothing done")
+            return
+        target = rng.choice(found)
+        self.log(
+            f"fault {self.faults}: {kind} (pid {target.pid}: {' '.join(target.cmdline())[:80]})"
+        )
+        if action == "kill":
+            target.send_signal(signal.SIGKILL)
+        else:
+            target.send_signal(signal.SIGSTOP)
+            time.sleep(STOP_S)
+            target.send_signal(signal.SIGCONT)
+        self._after_fault = True
+
+    def _record(self, problems: list[str]) -> None:
+        if self._after_fault:  # a course error right after a fault says what happened: fine
+            said = [p for p in problems if " says: " in p]
+            for line in said:
+                self.log(f"  said after the fault: {line.splitlines()[0][:160]}")
+            self._said = self._said or bool(said)
+            problems = [p for p in problems if p not in said]
+        super()._record(problems)
+
+    def whole_lab_problems(self) -> list[str]:
+        """Return what keeps the lab from being whole (checked until WHOLE_WITHIN_S)."""
+        deadline = time.monotonic() + WHOLE_WITHIN_S
+        while True:
+            problems = self._graph_and_strays()
+            if not problems or time.monotonic() > deadline:
+                return problems
+            time.sleep(1.0)
+
+    def _graph_and_strays(self) -> list[str]:
+        problems = []
+        terminal = Terminal(self.ui.page, self.ui.lab.base_url, self.ui.lab.token)
+        try:
+            nodes, _ = terminal.run_to_end("ros2 node list")
+            names = [n.strip() for n in _plain(nodes).splitlines() if n.strip().startswith("/")]
+            twice = sorted(n for n, count in Counter(names).items() if count > 1)
+            if twice or names.count("/mujoco") > 1:
+                problems.append(f"`ros2 node list` lists a name twice: {names}")
+        finally:
+            terminal.close()
+        lab = psutil.Process(self.ui.lab.process.pid)
+        inside = {lab.pid, *(p.pid for p in lab.children(recursive=True))}
+        problems += [
+            f"a process of the lab's domain outside it: {p}" for p in self._strays(inside)
+        ]
+        return problems
+
+    def _strays(self, inside: set[int]) -> list[str]:
+        """Return the live processes of the lab's ROS domain that are not in the lab's tree."""
+        strays = []
+        for process in psutil.process_iter():
+            try:
+                mine = process.environ().get("ROS_DOMAIN_ID") == str(self.ui.lab.domain_id)
+                outside = process.pid not in inside and process.pid != os.getpid()
+                if mine and outside and process.status() != psutil.STATUS_ZOMBIE:
+                    strays.append(f"{process.pid} {' '.join(process.cmdline())[:100]}")
+            except psutil.Error:
+                continue
+        return strays
+
+    def chaos_walk(self, seed: int, faults: int) -> None:
+        """Walk one step, then one fault and one step, `faults` times; check the lab is whole
+        after each step that follows a fault."""
+        self.log(f"chaos seed: {seed} (replay: CHAOS_SEED={seed} CHAOS_FAULTS={faults})")
+        rng = random.Random(seed)
+        self.reading = random.Random(seed + 1)
+        self.do(self.choose(rng))
+        for _ in range(faults):
+            if not self.can_go_on():
+                return
+            self.fault(rng.choice(FAULTS), rng)
+            step = self.choose(rng)
+            self.do(step)
+            self._after_fault = False
+            if self._said:  # as the message says: the lesson's first cell, then the rest
+                self._said = False
+                self.do(Step("first_then_all", step.lesson))
+            self._at = f"after step {self.steps}"
+            self._record(self.whole_lab_problems())
+        self.do(Step("check_graph", "the lab"))
