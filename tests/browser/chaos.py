@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import os
 import random
+import re
 import signal
 import time
 from collections import Counter
@@ -30,6 +31,7 @@ __all__ = ["FAULTS", "ChaosWalker", "chaos_settings"]
 
 STOP_S = 10.0  # a suspended laptop
 WHOLE_WITHIN_S = 10.0
+KERNEL_NOTICE_S = 15.0  # JupyterLab's "The kernel ... appears to have died"
 
 _TARGETS: dict[str, Callable[[list[str]], bool]] = {
     "the simulation": lambda argv: "course_lib.sim" in argv,
@@ -78,9 +80,8 @@ class ChaosWalker(Walker):
         self.faults += 1
         action, _, what = kind.partition(" ")
         if kind == "reload the page":
-            self.log(f"fault {self.faults}: the page is reloaded")
-            self.ui.page.reload(wait_until="load")
-            self.ui.page.wait_for_selector(".jp-Notebook", timeout=120_000)
+            self.log(f"fault {self.faults}: the page is loaded again (its websockets closed)")
+            self._reopen_page()
             self._after_fault = True
             return
         found = self._lab_tree(what)
@@ -93,11 +94,37 @@ class ChaosWalker(Walker):
         )
         if action == "kill":
             target.send_signal(signal.SIGKILL)
+            if what == "a lesson's kernel":
+                self._read_kernel_died()
         else:
             target.send_signal(signal.SIGSTOP)
             time.sleep(STOP_S)
             target.send_signal(signal.SIGCONT)
         self._after_fault = True
+
+    def _reopen_page(self) -> None:
+        """Load the lab's address again, as a learner does after closing the tab or pressing
+        F5: JupyterLab restores the open notebooks; their kernels kept running."""
+        page, lab = self.ui.page, self.ui.lab
+        page.goto(f"{lab.base_url}/lab?token={lab.token}")
+        page.locator(".jp-DirListing-item").first.wait_for()
+        for name in self.opened:
+            label = page.locator(
+                ".lm-TabBar-tabLabel", has_text=re.compile(rf"^{re.escape(name)}$")
+            )
+            label.first.wait_for(state="attached")
+
+    def _read_kernel_died(self) -> None:
+        """Read JupyterLab's notice of a dead kernel (it starts a new one) and close it, as the
+        learner does; say if none came."""
+        deadline = time.monotonic() + KERNEL_NOTICE_S
+        while time.monotonic() < deadline and "appears to have died" not in self.ui.dialog_text():
+            time.sleep(0.2)
+        said = self.ui.dismiss_dialogs()
+        for text in said:
+            self.log(f"  JupyterLab said: {' '.join(text.split())[:160]}")
+        if not any("appears to have died" in text for text in said):
+            self.log("  (no notice of the dead kernel: its notebook may not be in front)")
 
     def _record(self, problems: list[str]) -> None:
         if self._after_fault:  # a course error right after a fault says what happened: fine
