@@ -6,8 +6,8 @@ forgets the lesson: the next cell that uses `lesson`, `world` or `plot` fails wi
 and `%ros2` with "Line magic function not found". Both are said in the learner's terms: which
 cell of this notebook defines the name (found in the notebook the kernel runs for, named by
 Jupyter in JPY_SESSION_NAME), or that the lesson's first cell loads `%ros2`. Any other error
-keeps IPython's own traceback. The course's kernel loads this as it starts (kernel_launcher),
-and `start(N)` installs it again (IPython keeps one handler).
+keeps IPython's own traceback. The course's kernel loads the hints as it starts
+(kernel_launcher); `start(N)` installs them with the course errors (IPython keeps one handler).
 """
 
 from __future__ import annotations
@@ -121,13 +121,17 @@ def show_error(
     shell.showtraceback((etype, value, tb), tb_offset=tb_offset)
 
 
-def install(shell: Any) -> None:
-    """Make `shell` show cell errors this way (course errors, NameError, a missing magic)."""
+def install(shell: Any, *, course_errors: bool = True) -> None:
+    """Make `shell` show cell errors this way: a new or restarted kernel's slips (NameError, a
+    missing magic) and, with `course_errors`, course errors as their two lines."""
     from IPython.core.error import UsageError
 
-    shell.set_custom_exc((CourseError, NameError, UsageError), show_error)
+    handled = (CourseError,) if course_errors else ()
+    shell.set_custom_exc((*handled, NameError, UsageError), show_error)
 
 
 def load_ipython_extension(shell: Any) -> None:
-    """`%load_ext course_lib.notebook.cell_errors` (the course's kernel loads it at start)."""
-    install(shell)
+    """`%load_ext course_lib.notebook.cell_errors`, which the course's kernel does as it
+    starts: the restart hints only; `start(N)` adds course errors (before it, a script's
+    course error keeps its traceback, as it always had)."""
+    install(shell, course_errors=False)
