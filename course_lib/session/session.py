@@ -88,6 +88,8 @@ class SpinningNode:
         from rclpy.parameter import Parameter
         from rclpy.signals import SignalHandlerOptions
 
+        from .live_graph import LiveGraphNode
+
         self.context = rclpy.Context()
         rclpy.init(
             context=self.context,
@@ -95,7 +97,7 @@ class SpinningNode:
             signal_handler_options=SignalHandlerOptions.NO,
         )
         self.born = time.monotonic()  # the DDS participant comes with the first node
-        self.node = rclpy.create_node(
+        self.node: Any = LiveGraphNode(
             name,
             context=self.context,
             start_parameter_services=False,

@@ -11,9 +11,17 @@ counts when a client's view of the graph is whole.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Collection, Iterable, Sequence
+from collections.abc import Sequence
 
 from ...core.host import procfs
+from ...session.dds_participants import (
+    bound_participants,
+    participant_prefix,
+    prefix_pid,
+    present_participants,
+    read_bound_participants,
+    unseen_participants,
+)
 
 __all__ = [
     "NEWCOMER_S",
@@ -29,64 +37,6 @@ __all__ = [
     "starter_command",
     "unseen_participants",
 ]
-
-
-def participant_prefix(endpoint_gid: Sequence[int]) -> tuple[int, ...]:
-    """Return the participant part (GUID prefix) of a DDS endpoint's GID."""
-    return tuple(endpoint_gid[:12])
-
-
-def prefix_pid(prefix: Sequence[int]) -> int:
-    """Return the (low 16 bits of the) pid a Fast DDS GUID prefix names: bytes 4-5."""
-    return prefix[4] | prefix[5] << 8
-
-
-def present_participants(
-    seen: Iterable[Sequence[int]],
-    live_pids: Iterable[int],
-    running: Callable[[int], bool] = procfs.pid_alive,
-) -> int:
-    """Count the seen participants (GUID prefixes) whose process still runs.
-
-    A participant that has left stays seen until its removal arrives (until its lease ends,
-    if it was killed): counted, it would stand in for one bound on this host but not seen
-    yet. Four first calls at once: one that had ended stood in for the tutorial node, and
-    `ros2 topic list -t --no-daemon` listed only its own topics. A killed process that its
-    parent has not reaped yet is listed still, but its ports are free: `running` (asked only
-    of the pids a seen participant may name) counts it as gone.
-    """
-    by_low_bits: dict[int, list[int]] = {}
-    for pid in live_pids:
-        by_low_bits.setdefault(pid & 0xFFFF, []).append(pid)
-    return sum(
-        any(running(pid) for pid in by_low_bits.get(prefix_pid(prefix), ())) for prefix in seen
-    )
-
-
-def unseen_participants(
-    bound: int,
-    seen: Collection[Sequence[int]],
-    live_pids: Callable[[], Iterable[int]] = procfs.pids,
-    running: Callable[[int], bool] = procfs.pid_alive,
-) -> int:
-    """Return how many of the `bound` participants on this host are not among `seen` (GUID
-    prefixes); the processes are listed only when the count alone says none is missing
-    (see `present_participants`)."""
-    if len(seen) < bound:
-        return bound - len(seen)
-    return max(0, bound - present_participants(seen, live_pids(), running))
-
-
-def bound_participants(domain_id: int, ports: Iterable[int]) -> int:
-    """Count the participants of `domain_id` among the UDP ports bound on this host."""
-    base = 7400 + 250 * domain_id
-    return len({port - base for port in ports if 10 <= port - base < 250 and port % 2 == 0})
-
-
-def read_bound_participants(domain_id: int) -> int | None:
-    """Return how many participants of `domain_id` this host has (None without /proc)."""
-    ports = procfs.bound_udp_ports()
-    return None if ports is None else bound_participants(domain_id, ports)
 
 
 # A process of the domain younger than this may still be starting its node (a Python
