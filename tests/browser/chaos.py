@@ -1,9 +1,10 @@
 """Faults between a learner's steps (issue 62, `make chaos`): a process of the lab killed or
 stopped, the page reloaded; then the learner's next step, and the lab whole again.
 
-Each fault acts on one process of the lab's own tree (never anything else): the simulation,
-a lesson's node, the `ros2` daemon, a lesson's kernel killed with SIGKILL; the simulation
-stopped for 10 s (SIGSTOP, then SIGCONT: a suspended laptop); the browser page reloaded. After
+Each fault acts on the lab's own tree (never anything else): the simulation, a lesson's node,
+the `ros2` daemon, a lesson's kernel (idle, or busy in a Run All) killed with SIGKILL; the
+simulation, or every process of the lab, stopped for 10 s (SIGSTOP, then SIGCONT: a suspended
+laptop); the browser page reloaded. After
 it, the learner's next step may say in one line what happened (a course error, never a
 traceback); the learner then does what it says (the lesson's first cell, then Run All), and
 that must be clean. Within 10 s of the next step the lab is whole:
@@ -27,9 +28,12 @@ from lab_graph import _plain
 from terminal import Terminal
 from walk import Step, Walker, seed_and_count
 
+from course_lib.processes.orphans import OWNER_ENV, owner_tag
+
 __all__ = ["FAULTS", "ChaosWalker", "chaos_settings"]
 
 STOP_S = 10.0  # a suspended laptop
+WORLD_FIRST = "07_move_the_robot.ipynb"
 WHOLE_WITHIN_S = 10.0
 KERNEL_NOTICE_S = 15.0  # JupyterLab's "The kernel ... appears to have died"
 
@@ -46,7 +50,9 @@ FAULTS = (
     "kill a lesson's node",
     "kill the ros2 daemon",
     "kill a lesson's kernel",
+    "kill a busy kernel",
     "stop the simulation",
+    "stop the whole lab",
     "reload the page",
 )
 
@@ -84,6 +90,12 @@ class ChaosWalker(Walker):
             self._reopen_page()
             self._after_fault = True
             return
+        if kind == "kill a busy kernel":
+            self._kill_busy_kernel(rng)
+            return
+        if kind == "stop the whole lab":
+            self._stop_whole_lab()
+            return
         found = self._lab_tree(what)
         if not found:
             self.log(f"fault {self.faults}: {kind}: none runs, nothing done")
@@ -100,6 +112,59 @@ class ChaosWalker(Walker):
             target.send_signal(signal.SIGSTOP)
             time.sleep(STOP_S)
             target.send_signal(signal.SIGCONT)
+        self._after_fault = True
+
+    def _has_target(self, kind: str) -> bool:
+        """Return whether fault `kind` finds what it acts on (a process, an open lesson)."""
+        what = kind.partition(" ")[2]
+        return what not in _TARGETS or bool(self._lab_tree(what))
+
+    def _kill_busy_kernel(self, rng: random.Random) -> None:
+        """Run All in an open lesson and SIGKILL its kernel while a cell runs."""
+        if not self.opened:
+            self.log(f"fault {self.faults}: kill a busy kernel: no lesson open, nothing done")
+            return
+        name = rng.choice(self.opened)
+        self.ui.show(name)
+        try:
+            self.ui.start_run_all()
+        except AssertionError as exc:  # it ran to its end before the kill, or never began
+            self.log(f"  (the run was not seen busy: {str(exc).splitlines()[0][:120]})")
+        kernel_id = self.ui.kernel_id()
+        found = [
+            p
+            for p in self._lab_tree("a lesson's kernel")
+            if kernel_id and any(kernel_id in arg for arg in p.cmdline())
+        ]
+        if not found:
+            self.log(f"fault {self.faults}: kill a busy kernel: {name}'s kernel not found")
+            return
+        time.sleep(rng.uniform(0.0, 3.0))  # somewhere in the run
+        self.log(f"fault {self.faults}: kill {name}'s kernel while it runs (pid {found[0].pid})")
+        found[0].send_signal(signal.SIGKILL)
+        self._read_kernel_died()
+        self._after_fault = True
+
+    def _stop_whole_lab(self) -> None:
+        """SIGSTOP every process of the lab for STOP_S, then SIGCONT them (a laptop suspended;
+        the browser goes on)."""
+        root = psutil.Process(self.ui.lab.process.pid)
+        tree = [root, *root.children(recursive=True)]
+        tree += [p for p in psutil.process_iter() if p not in tree and self._owned(p)]
+        self.log(f"fault {self.faults}: stop the whole lab ({len(tree)} processes, {STOP_S:g} s)")
+        stopped = []
+        for process in tree:
+            try:
+                process.send_signal(signal.SIGSTOP)
+                stopped.append(process)
+            except psutil.Error:
+                continue
+        time.sleep(STOP_S)
+        for process in stopped:
+            try:
+                process.send_signal(signal.SIGCONT)
+            except psutil.Error:
+                continue
         self._after_fault = True
 
     def _reopen_page(self) -> None:
@@ -162,30 +227,46 @@ class ChaosWalker(Walker):
         ]
         return problems
 
+    def _owned(self, process: psutil.Process) -> bool:
+        """Return whether `process` runs detached but is the lab's (its owner tag names it)."""
+        try:
+            return process.environ().get(OWNER_ENV) == owner_tag(self.ui.lab.process.pid)
+        except psutil.Error:
+            return False
+
     def _strays(self, inside: set[int]) -> list[str]:
-        """Return the live processes of the lab's ROS domain that are not in the lab's tree."""
+        """Return the live processes of the lab's ROS domain that are neither in the lab's tree
+        nor owned by the lab (a daemon a command started again after the lab's was killed runs
+        detached, tagged with its lab, and ends with it)."""
         strays = []
         for process in psutil.process_iter():
             try:
                 mine = process.environ().get("ROS_DOMAIN_ID") == str(self.ui.lab.domain_id)
                 outside = process.pid not in inside and process.pid != os.getpid()
+                outside = outside and not self._owned(process)
                 if mine and outside and process.status() != psutil.STATUS_ZOMBIE:
                     strays.append(f"{process.pid} {' '.join(process.cmdline())[:100]}")
             except psutil.Error:
                 continue
         return strays
 
-    def chaos_walk(self, seed: int, faults: int) -> None:
+    def chaos_walk(self, seed: int, faults: int, *, every_kind: bool = False) -> None:
         """Walk one step, then one fault and one step, `faults` times; check the lab is whole
-        after each step that follows a fault."""
+        after each step that follows a fault. With `every_kind`, the faults are each of FAULTS
+        once, in the seed's order (`faults` is then their number)."""
         self.log(f"chaos seed: {seed} (replay: CHAOS_SEED={seed} CHAOS_FAULTS={faults})")
         rng = random.Random(seed)
         self.reading = random.Random(seed + 1)
-        self.do(self.choose(rng))
-        for _ in range(faults):
+        kinds = rng.sample(FAULTS, len(FAULTS)) if every_kind else None
+        # each kind once: from a lesson whose world runs, so that every fault finds its target
+        self.do(Step("open", WORLD_FIRST) if every_kind else self.choose(rng))
+        for index in range(len(kinds) if kinds else faults):
             if not self.can_go_on():
                 return
-            self.fault(rng.choice(FAULTS), rng)
+            kind = kinds[index] if kinds else rng.choice(FAULTS)
+            if kinds and not self._has_target(kind):  # lesson 7 again: its world and node
+                self.do(Step("first_then_all", WORLD_FIRST))
+            self.fault(kind, rng)
             step = self.choose(rng)
             self.do(step)
             self._after_fault = False

@@ -252,6 +252,20 @@ class LabPage:
             ) from None
         self.fail_on_dialog(doing)
 
+    def start_run_all(self) -> None:
+        """Run > Run All Cells on the notebook in front; return once its kernel is busy."""
+        doing = f"Run > Run All Cells in {self.current()}"
+        self._wait_kernel(r"\| Idle$", doing)
+        self._menu("Run", "Run All Cells")
+        self._wait_kernel(r"\| Busy$", doing)
+
+    def kernel_id(self) -> str:
+        """Return the id of the kernel of the notebook in front ("" with none)."""
+        return self.page.evaluate(
+            "() => window.jupyterapp.shell.currentWidget?.sessionContext?.session?.kernel?.id"
+            " || ''"
+        )
+
     def run_all(self) -> None:
         """Run > Run All Cells on the notebook in front; wait until it ran."""
         doing = f"Run > Run All Cells in {self.current()}"

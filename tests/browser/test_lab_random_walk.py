@@ -27,6 +27,9 @@ SOAK_STEPS = 100
 SHORT_SEED = 762208
 
 
+# The suite walks the same steps with a fault between them (test_lab_chaos.py: each fault kind
+# once); this walk without faults replays a seed on demand (WALK_SEED, WALK_STEPS).
+@pytest.mark.skipif(not os.environ.get("WALK_SEED"), reason="the suite's walk is the fault walk")
 @pytest.mark.timeout(1200)  # ten steps, each may restart a kernel
 def test_a_short_random_walk(lab_page, artifacts: Path) -> None:
     seed, steps = walk_settings(SHORT_STEPS, SHORT_SEED)
