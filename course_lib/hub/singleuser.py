@@ -58,5 +58,9 @@ def run_hub_lab(extra: Sequence[str] = ()) -> int:
     root = prepare_learner_copy(Path.home())
     os.environ[LEARNER_ROOT_ENV] = str(root)  # the lessons write into the learner's my_files/
     return run_lab(
-        extra, server_argv=_singleuser_argv(root), cwd=root, name="jupyterhub-singleuser"
+        extra,
+        server_argv=_singleuser_argv(root),
+        cwd=root,
+        name="jupyterhub-singleuser",
+        restart_killed=False,  # the hub shows it stopped; "Start My Server" brings it back
     )

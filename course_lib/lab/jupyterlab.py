@@ -21,6 +21,7 @@ from ..ros2 import start_daemon
 from ..session.session import session_env
 from .leftovers import clean_up_killed_labs, workspaces_dir
 from .protocol import SOCKET_ENV
+from .server_restarts import ServerRestarts, argv_with
 
 __all__ = [
     "FIRST_LESSON",
@@ -113,12 +114,15 @@ def run_lab(
     server_argv: Callable[[Sequence[str]], list[str]] = lab_argv,
     cwd: Path = REPO_ROOT,
     name: str = "jupyterlab",
+    restart_killed: bool = True,
 ) -> int:
     """Start the ros2 daemon and JupyterLab in a leased domain; stop both on Ctrl-C.
 
     `server_argv` builds the Jupyter server's command line from the extra options (a hub's
     learner runs jupyterhub-singleuser instead of jupyter lab), run in `cwd`: the folder it
-    serves (its `root_dir`).
+    serves (its `root_dir`). With `restart_killed`, a server killed by a signal (the
+    out-of-memory killer) is started again at its address (`ServerRestarts`); a hub's learner
+    server is the hub's to start again.
     """
     for note in (clean_up_killed_labs(), sweep_stale_segments().sentence()):
         if note:
@@ -147,8 +151,15 @@ def run_lab(
     argv = server_argv([f"--LabApp.workspaces_dir={workspaces}", *extra])
     lab = spawn(argv, name=name, env=env, cwd=cwd, capture=False)
     children.append(lab)
+    restarts = ServerRestarts(env)
     try:
-        code = lab.wait()
+        while True:
+            code = lab.wait()
+            again = restarts.argv_again(lab.pid, code) if restart_killed else None
+            if again is None:
+                break
+            lab = spawn(argv_with(argv, again), name=name, env=env, cwd=cwd, capture=False)
+            children[-1] = lab
     except KeyboardInterrupt:
         lab.send_signal(signal.SIGTERM)
         code = lab.wait(10.0)

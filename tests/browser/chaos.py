@@ -2,7 +2,8 @@
 stopped, the page reloaded; then the learner's next step, and the lab whole again.
 
 Each fault acts on the lab's own tree (never anything else): the simulation, a lesson's node,
-the `ros2` daemon, a lesson's kernel (idle, or busy in a Run All) killed with SIGKILL; the
+the `ros2` daemon, a lesson's kernel (idle, or busy in a Run All), the Jupyter server (the
+lab starts it again at its address) killed with SIGKILL; the
 simulation, or every process of the lab, stopped for 10 s (SIGSTOP, then SIGCONT: a suspended
 laptop); the browser page reloaded. After
 it, the learner's next step may say in one line what happened (a course error, never a
@@ -36,6 +37,7 @@ STOP_S = 10.0  # a suspended laptop
 WORLD_FIRST = "07_move_the_robot.ipynb"
 WHOLE_WITHIN_S = 10.0
 KERNEL_NOTICE_S = 15.0  # JupyterLab's "The kernel ... appears to have died"
+SERVER_BACK_S = 30.0  # the lab's launcher starts a killed server again
 
 _TARGETS: dict[str, Callable[[list[str]], bool]] = {
     "the simulation": lambda argv: "course_lib.sim" in argv,
@@ -44,6 +46,9 @@ _TARGETS: dict[str, Callable[[list[str]], bool]] = {
     ),
     "the ros2 daemon": lambda argv: "course_lib.ros2.command.daemon" in argv,
     "a lesson's kernel": lambda argv: "course_lib.notebook.kernel_launcher" in argv,
+    "the Jupyter server": lambda argv: any(
+        a.rpartition("/")[2] in ("jupyter", "jupyter-lab") for a in argv[:2]
+    ),
 }
 FAULTS = (
     "kill the simulation",
@@ -51,6 +56,7 @@ FAULTS = (
     "kill the ros2 daemon",
     "kill a lesson's kernel",
     "kill a busy kernel",
+    "kill the Jupyter server",
     "stop the simulation",
     "stop the whole lab",
     "reload the page",
@@ -73,7 +79,9 @@ class ChaosWalker(Walker):
     def _lab_tree(self, what: str) -> list[psutil.Process]:
         match = _TARGETS[what]
         found = []
-        for process in psutil.Process(self.ui.lab.process.pid).children(recursive=True):
+        tree = psutil.Process(self.ui.lab.process.pid).children(recursive=True)
+        detached = [p for p in psutil.process_iter() if p not in tree and self._owned(p)]
+        for process in [*tree, *detached]:
             try:
                 if match(process.cmdline()):
                     found.append(process)
@@ -108,6 +116,8 @@ class ChaosWalker(Walker):
             target.send_signal(signal.SIGKILL)
             if what == "a lesson's kernel":
                 self._read_kernel_died()
+            if what == "the Jupyter server":
+                self._wait_for_server_again(target.pid)
         else:
             target.send_signal(signal.SIGSTOP)
             time.sleep(STOP_S)
@@ -166,6 +176,23 @@ class ChaosWalker(Walker):
             except psutil.Error:
                 continue
         self._after_fault = True
+
+    def _wait_for_server_again(self, killed: int) -> None:
+        """Wait until the lab's launcher has started its server again and it answers; then
+        close what JupyterLab said meanwhile, as the learner does."""
+        deadline = time.monotonic() + SERVER_BACK_S
+        while not (self._server_pid() not in (None, killed) and self.ui.lab.answers()):
+            if time.monotonic() > deadline:
+                self._record([f"the Jupyter server is not back {SERVER_BACK_S:g} s after a kill"])
+                return
+            time.sleep(0.2)
+        self.log(f"  the server is back ({time.monotonic() - deadline + SERVER_BACK_S:.0f} s)")
+        for text in self.ui.dismiss_dialogs():
+            self.log(f"  JupyterLab said: {' '.join(text.split())[:160]}")
+
+    def _server_pid(self) -> int | None:
+        found = self._lab_tree("the Jupyter server")
+        return found[0].pid if found else None
 
     def _reopen_page(self) -> None:
         """Load the lab's address again, as a learner does after closing the tab or pressing

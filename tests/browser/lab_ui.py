@@ -274,6 +274,16 @@ class LabPage:
         self._menu("Run", "Run All Cells")
         self._wait_settled(doing)
 
+    def restart_kernel(self) -> None:
+        """Kernel > Restart Kernel…, confirmed; return once the dialog has closed."""
+        self._wait_kernel(r"\| Idle$", f"Kernel > Restart Kernel… in {self.current()}")
+        self.page.get_by_role("menuitem", name="Kernel", exact=True).click()
+        # its name carries the shortcut JupyterLab shows beside it ("0, 0")
+        self.page.get_by_role("menuitem", name=re.compile(r"^Restart Kernel…")).first.click()
+        dialog = self.page.locator(".jp-Dialog", has_text="Restart Kernel?")
+        dialog.get_by_role("button", name="Confirm Kernel Restart").click()
+        dialog.wait_for(state="detached")
+
     def restart_and_run_all(self) -> None:
         """Kernel > Restart Kernel and Run All Cells…, confirmed; wait until it ran."""
         doing = f"Kernel > Restart Kernel and Run All Cells… in {self.current()}"
@@ -288,7 +298,8 @@ class LabPage:
     def run_cell(self, cell: Cell) -> Cell:
         """Run one code cell again, as Shift+Enter in it does; return it as it then shows."""
         doing = f"Shift+Enter in {self.current()}'s cell `{cell.first_line()}`"
-        self._wait_kernel(r"\| Idle$", doing)
+        # a kernel that is not busy, or none (its server was started again): the cell starts one
+        self._wait_kernel(r"\| Idle$|^No Kernel", doing)
         self.page.evaluate(_ARM)
         self._click_editor(cell.index)
         self.page.keyboard.press("Shift+Enter")

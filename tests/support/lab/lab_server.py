@@ -65,6 +65,18 @@ class LabServer:
         self.domain_id = int(domain[1]) if domain else None
         self._wait_until_serving(timeout)
 
+    def answers(self) -> bool:
+        """Return whether a server answers this lab's API at its address with its token."""
+        request = urllib.request.Request(
+            f"{self.base_url}/api/status", headers={"Authorization": f"token {self.token}"}
+        )
+        try:
+            with _OPENER.open(request, timeout=5) as reply:
+                reply.read()
+            return True
+        except (urllib.error.URLError, OSError):
+            return False
+
     def _wait_until_serving(self, timeout: float) -> None:
         """Return once JupyterLab answers its API with this token; raise if it never does.
 

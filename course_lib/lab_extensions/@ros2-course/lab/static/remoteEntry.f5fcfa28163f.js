@@ -48,11 +48,51 @@
     proto.__ros2CourseStartOnce = true;
   }
 
+  // A kernel killed while a cell runs is started again by the server; now and then the
+  // page's connection to the new kernel stays "Unknown": nothing of the new kernel reached
+  // it, and JupyterLab holds every request (the cells run) until the new kernel says it is
+  // starting, which the idle kernel never says again. After STUCK_MS of that, the page
+  // connects again and restarts that kernel (new, idle, nothing run in it yet: nothing is
+  // lost), whose "starting" then reaches the page.
+  var STUCK_MS = 10000;
+
+  function wakeUp(kernel) {
+    console.warn(NAME + ": the kernel connection stayed unknown; connecting and restarting");
+    return kernel.reconnect().then(function () {
+      return kernel.restart();
+    });
+  }
+
+  function healStuck(context) {
+    if (context.__ros2CourseHeals) {
+      return;
+    }
+    context.__ros2CourseHeals = true;
+    var timer = null;
+    context.statusChanged.connect(function (_sender, status) {
+      if (timer !== null) {
+        clearTimeout(timer);
+        timer = null;
+      }
+      if (status !== "unknown") {
+        return;
+      }
+      timer = setTimeout(function () {
+        timer = null;
+        var kernel = context.session && context.session.kernel;
+        if (kernel && kernel.status === "unknown" && kernel.connectionStatus === "connected") {
+          wakeUp(kernel).catch(function () {});
+        }
+      }, STUCK_MS);
+    });
+  }
+
   function watch(app) {
     var patch = function () {
       var widget = app.shell.currentWidget;
       if (widget && widget.sessionContext) {
         startOnce(widget.sessionContext);
+        healStuck(widget.sessionContext);
       }
     };
     patch();
@@ -63,7 +103,9 @@
 
   var plugin = {
     id: NAME + ":start-kernel-once",
-    description: "Run All on a notebook without a kernel starts one kernel, then every cell.",
+    description:
+      "Run All on a notebook without a kernel starts one kernel, then every cell; a kernel" +
+      " connection stuck unknown after a restart connects again.",
     autoStart: true,
     activate: function (app) {
       watch(app);

@@ -1,0 +1,79 @@
+"""A notebook whose kernel connection is left "Unknown" after a restart connects again by
+itself (the course's lab extension), so cells run again without the learner's help.
+
+Found by `make chaos` (issue 62): a kernel killed while Run All ran came back on the server
+(idle), but now and then the page's connection stayed "Unknown" and every cell waited behind it
+for ever (the server, idle, answered nothing on that socket; JupyterLab waits on an open socket for
+ever). Here the socket breaks on purpose: the page's kernel websocket is routed through the
+test, which passes nothing from the server on from a restart on.
+"""
+
+from __future__ import annotations
+
+import re
+import time
+from pathlib import Path
+
+import pytest
+
+pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.slow]
+
+LESSONS = ["02_key_points.ipynb"]
+HEALED_WITHIN_S = 30.0
+_STATE = """() => {
+  const context = window.jupyterapp.shell.currentWidget.sessionContext;
+  const kernel = context.session?.kernel;
+  return [kernel?.status, kernel?.connectionStatus, !!context.__ros2CourseHeals];
+}"""  # the extension reconnects after 10 s of "unknown"
+
+
+def test_a_kernel_connection_stuck_unknown_connects_again(  # type: ignore[no-untyped-def]
+    lab_page, artifacts: Path
+) -> None:
+    page = lab_page.page
+    sockets: list[dict[str, object]] = []  # each kernel websocket: whether its bridge broke
+    said: list[str] = []
+    page.on("console", lambda message: said.append(message.text))
+
+    break_next = {"armed": False}
+
+    def route(ws) -> None:  # type: ignore[no-untyped-def]
+        state: dict[str, object] = {"broken": break_next["armed"], "dropped": 0}
+        break_next["armed"] = False
+        sockets.append(state)
+        server = ws.connect_to_server()
+        ws.on_message(server.send)
+
+        def from_server(message) -> None:  # type: ignore[no-untyped-def]
+            if state["broken"]:  # the server's side of this socket passes nothing on
+                state["dropped"] = int(state["dropped"]) + 1  # type: ignore[call-overload]
+                return
+            ws.send(message)
+
+        server.on_message(from_server)
+
+    page.route_web_socket(re.compile(r"/api/kernels/[^/]+/channels"), route)
+    page.reload()  # the route applies to the websockets of pages loaded from now on
+    page.locator(".jp-DirListing-item").first.wait_for()
+    lab_page.open(LESSONS[0])
+    assert sockets, "the kernel's websocket was not routed: nothing would be tested"
+
+    opened = len(sockets)
+    break_next["armed"] = True  # the socket the restart opens passes nothing from the server
+    lab_page.restart_kernel()
+    stuck_since = time.monotonic()
+    page.wait_for_timeout(3000)
+    assert "Unknown" in lab_page.kernel_status(), lab_page.kernel_status()
+
+    while "Idle" not in lab_page.kernel_status():
+        assert time.monotonic() - stuck_since < HEALED_WITHIN_S, (
+            f"still {lab_page.kernel_status()!r} {HEALED_WITHIN_S:g} s after the connection broke:"
+            f" {page.evaluate(_STATE)} {sockets} {[t for t in said if 'ros2' in t]}"
+        )
+        page.wait_for_timeout(500)
+    assert len(sockets) >= opened + 2, "healed without a new connection?"
+    assert sockets[opened]["broken"] and sockets[opened]["dropped"], sockets
+    assert any("reconnecting" in text for text in said), said
+    cell = lab_page.add_cell("print(6 * 7)")
+    lab_page.screenshot(artifacts / "healed.png")
+    assert "42" in cell.text, cell.text
