@@ -213,13 +213,18 @@ class LabPage:
         )
 
     def _wait_kernel(self, status: str, doing: str) -> None:
-        """Wait until the status bar's kernel text matches `status` (fail on a dialog)."""
+        """Wait until the status bar's kernel text matches `status` (fail on a dialog). A
+        pattern that allows "No Kernel" allows a notebook whose session is gone too (its server
+        was killed and started again), whatever its status bar still says ("Disconnected"):
+        a run starts a kernel there."""
         from playwright.sync_api import TimeoutError as PlaywrightTimeout
 
         try:
             self.page.wait_for_function(
                 """([pattern]) => {
                   if (document.querySelector('.jp-Dialog')) return true;
+                  const context = window.jupyterapp?.shell.currentWidget?.sessionContext;
+                  if (pattern.includes('No Kernel') && context && !context.session) return true;
                   const bar = document.querySelector('.jp-StatusBar-Widget');
                   return !!bar && bar.innerText.split('\\n').some((l) => RegExp(pattern).test(l));
                 }""",
@@ -333,7 +338,10 @@ class LabPage:
     def add_cell(self, code: str) -> Cell:
         """Add a code cell at the end of the notebook in front, run it; return it."""
         count = len(self.cells())
-        self._wait_kernel(r"\| Idle$", f"adding a cell to {self.current()}")
+        # a kernel that is not busy, or none (its server was started again): the cell starts one
+        self._wait_kernel(
+            r"\| Idle$|^No Kernel|\| Disconnected$", f"adding a cell to {self.current()}"
+        )
         self._click_editor(count - 1)
         self.page.keyboard.press("Escape")
         self.page.keyboard.press("b")

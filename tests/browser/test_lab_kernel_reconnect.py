@@ -23,7 +23,7 @@ HEALED_WITHIN_S = 30.0
 _STATE = """() => {
   const context = window.jupyterapp.shell.currentWidget.sessionContext;
   const kernel = context.session?.kernel;
-  return [kernel?.status, kernel?.connectionStatus, !!context.__ros2CourseHeals];
+  return [kernel?.id, kernel?.status, kernel?.connectionStatus, !!context.__ros2CourseHeals];
 }"""  # the extension reconnects after 10 s of "unknown"
 
 
@@ -76,4 +76,34 @@ def test_a_kernel_connection_stuck_unknown_connects_again(  # type: ignore[no-un
     assert any("reconnecting" in text for text in said), said
     cell = lab_page.add_cell("print(6 * 7)")
     lab_page.screenshot(artifacts / "healed.png")
+    assert "42" in cell.text, cell.text
+
+
+def test_a_notebook_runs_again_after_its_server_was_killed(  # type: ignore[no-untyped-def]
+    lab_page, artifacts: Path
+) -> None:
+    """The lab starts a killed server again; its notebooks' old kernels are gone with it. The
+    page lets go of the old session (its status bar may still say "Disconnected") and the next
+    cell run starts a new kernel: what the learner typed runs."""
+    import signal
+
+    import psutil
+
+    said: list[str] = []
+    lab_page.page.on("console", lambda message: said.append(message.text))
+    lab_page.open(LESSONS[0])
+    root = psutil.Process(lab_page.lab.process.pid)
+    server = next(c for c in root.children() if "jupyter" in " ".join(c.cmdline()[:2]))
+    server.send_signal(signal.SIGKILL)
+    since = time.monotonic()
+    lab_page.page.wait_for_timeout(3000)  # the page has noticed: its status no longer "Idle"
+    while lab_page.page.evaluate(_STATE)[0] is not None:  # the old kernel: still its session's
+        assert time.monotonic() - since < HEALED_WITHIN_S, (
+            f"{lab_page.kernel_status()!r} {lab_page.page.evaluate(_STATE)}"
+            f" {[t for t in said if 'ros2' in t]}"
+        )
+        lab_page.page.wait_for_timeout(500)
+    lab_page.dismiss_dialogs()
+    cell = lab_page.add_cell("print(6 * 7)")
+    lab_page.screenshot(artifacts / "after-server-killed.png")
     assert "42" in cell.text, cell.text
