@@ -118,6 +118,12 @@ def page(browser, lab, request: pytest.FixtureRequest):  # type: ignore[no-untyp
     tab.close()
 
 
+def _run_suffix() -> str:
+    """Return "-<pid>" for a walk run by hand (`make chaos`, `make soak`), else ""."""
+    by_hand = os.environ.get("CHAOS_FAULTS") or os.environ.get("WALK_SOAK")
+    return f"-{os.getpid()}" if by_hand else ""
+
+
 @pytest.fixture
 def lab_page(browser, request: pytest.FixtureRequest) -> Iterator[object]:  # type: ignore[no-untyped-def]
     """A lab of its own for each attempt (a rerun inherits nothing) on copies of the module's
@@ -126,7 +132,8 @@ def lab_page(browser, request: pytest.FixtureRequest) -> Iterator[object]:  # ty
     from lab_ui import LabPage
 
     server = _learners_lab(
-        ARTIFACTS / f"lab-{request.node.name}",
+        # two `make chaos` at once: a lab folder each (the lessons' copies are rewritten)
+        ARTIFACTS / f"lab-{request.node.name}{_run_suffix()}",
         request.module.LESSONS,
         extra=["--LabApp.expose_app_in_browser=True"],  # the tests read cells from the model
     )

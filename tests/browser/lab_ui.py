@@ -41,6 +41,7 @@ _CELLS = f"""() => {{
   }}));
 }}"""
 # Watch the notebook in front: did a cell show `[*]` (queued or running) since armed?
+_HAS_SESSION = "() => !!window.jupyterapp.shell.currentWidget?.sessionContext?.session"
 _ARM = f"""() => {{
   {_FRONT}
   const panel = document.querySelector('{_PANEL}');
@@ -290,9 +291,14 @@ class LabPage:
         dialog.wait_for(state="detached")
 
     def restart_and_run_all(self) -> None:
-        """Kernel > Restart Kernel and Run All Cells…, confirmed; wait until it ran."""
+        """Kernel > Restart Kernel and Run All Cells…, confirmed; wait until it ran. A notebook
+        with no kernel (its server was killed and started again) has none to restart: the
+        learner runs all its cells instead, which starts one."""
         doing = f"Kernel > Restart Kernel and Run All Cells… in {self.current()}"
-        self._wait_kernel(r"\| Idle$", doing)
+        self._wait_kernel(r"\| Idle$|^No Kernel", doing)
+        if not self.page.evaluate(_HAS_SESSION):
+            self.run_all()
+            return
         self.page.evaluate(_ARM)
         self._menu("Kernel", "Restart Kernel and Run All Cells…")
         dialog = self.page.locator(".jp-Dialog", has_text="Restart Kernel?")
