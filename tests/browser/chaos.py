@@ -22,7 +22,7 @@ import signal
 import time
 from collections import Counter
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import psutil
 from lab_graph import _plain
@@ -50,6 +50,8 @@ _TARGETS: dict[str, Callable[[list[str]], bool]] = {
         a.rpartition("/")[2] in ("jupyter", "jupyter-lab") for a in argv[:2]
     ),
 }
+# The steps that run a lesson's first cell (`lesson = start(N)`) again.
+_FIRST_CELL_STEPS = ("open", "run_all", "restart", "first_then_all", "read_through")
 FAULTS = (
     "kill the simulation",
     "kill a lesson's node",
@@ -75,6 +77,9 @@ class ChaosWalker(Walker):
     faults: int = 0
     _after_fault: bool = False
     _said: bool = False  # the step after a fault said what happened (the learner follows it)
+    # open lessons whose kernel a fault killed (a server kill kills them all) and that have not
+    # run their first cell since: the first step on each may say so, however much later
+    _lost: set[str] = field(default_factory=set)
 
     def _lab_tree(self, what: str) -> list[psutil.Process]:
         match = _TARGETS[what]
@@ -118,6 +123,7 @@ class ChaosWalker(Walker):
                 self._read_kernel_died()
             if what == "the Jupyter server":
                 self._wait_for_server_again(target.pid)
+                self._lost |= set(self.opened)  # every kernel died with the server
         else:
             target.send_signal(signal.SIGSTOP)
             time.sleep(STOP_S)
@@ -215,6 +221,8 @@ class ChaosWalker(Walker):
         said = self.ui.dismiss_dialogs()
         for text in said:
             self.log(f"  JupyterLab said: {' '.join(text.split())[:160]}")
+            if "appears to have died" in text:
+                self._lost |= {name for name in self.opened if f"/{name}" in text}
         if not any("appears to have died" in text for text in said):
             self.log("  (no notice of the dead kernel: its notebook may not be in front)")
 
@@ -295,8 +303,11 @@ class ChaosWalker(Walker):
                 self.do(Step("first_then_all", WORLD_FIRST))
             self.fault(kind, rng)
             step = self.choose(rng)
+            self._after_fault = self._after_fault or step.lesson in self._lost
             self.do(step)
             self._after_fault = False
+            if self._said or step.kind in _FIRST_CELL_STEPS:  # it has run `start(N)` again
+                self._lost.discard(step.lesson)
             if self._said:  # as the message says: the lesson's first cell, then the rest
                 self._said = False
                 self.do(Step("first_then_all", step.lesson))
