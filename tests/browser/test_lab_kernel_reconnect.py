@@ -19,7 +19,9 @@ import pytest
 pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.slow]
 
 LESSONS = ["02_key_points.ipynb"]
-HEALED_WITHIN_S = 30.0
+# the extension reconnects after 10 s of "unknown" and restarts the kernel (seen taking 20 s
+# more on 2 busy cores in a whole suite run)
+HEALED_WITHIN_S = 60.0
 _STATE = """() => {
   const context = window.jupyterapp.shell.currentWidget.sessionContext;
   const kernel = context.session?.kernel;

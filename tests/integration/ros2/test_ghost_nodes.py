@@ -9,37 +9,19 @@ graphs through rmw's own API, so these tests see the real graph cache with a rea
 
 from __future__ import annotations
 
-import os
 import time
-from collections.abc import Iterator
 
 import pytest
 from ghost_node import make_ghost
 from ros2_golden import console_env, run_console
 
 from course_lib.core.waiting import wait_until
-from course_lib.ros2 import start_daemon
 from course_lib.ros2.api import nodes_and_params as api
 from course_lib.ros2.node.client import SERVICE_WAIT_S
-from course_lib.ros2.node.connect import daemon_socket
 from course_lib.ros2.node.discovery import GHOST_GRACE_S
-from course_lib.session.session import Session, get_session
+from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
-
-
-@pytest.fixture(scope="module")
-def lab() -> Iterator[Session]:
-    """Yield a session whose kernel-side client and terminal daemon both run."""
-    session = get_session()
-    daemon = start_daemon(session.env)
-    try:
-        assert wait_until(lambda: os.path.exists(daemon_socket(session.domain_id)), 15)
-        run_console(console_env(session), "ros2 node list")  # the daemon's client is up
-        yield session
-    finally:
-        daemon.stop()
-        session.close()
 
 
 def _raw(session: Session) -> list[str]:

@@ -11,7 +11,6 @@ from __future__ import annotations
 import os
 import signal
 import time
-from collections.abc import Iterator
 
 import pytest
 from ros2_golden import console_env, run_console
@@ -19,30 +18,14 @@ from ros2_golden import console_env, run_console
 from course_lib.core.host import procfs
 from course_lib.core.waiting import wait_until
 from course_lib.processes.children import ChildProcess
-from course_lib.ros2 import start_daemon
 from course_lib.ros2.api import nodes_and_params as api
-from course_lib.ros2.node.connect import daemon_socket
-from course_lib.session.session import Session, get_session
+from course_lib.session.session import Session
 
 pytestmark = pytest.mark.ros
 
 NODE = "/param_vel_node"
 # Longer than the lease the course had (3 s), shorter than a test should sleep.
 STOPPED_S = 5.0
-
-
-@pytest.fixture(scope="module")
-def lab() -> Iterator[Session]:
-    """Yield a session whose kernel-side client and terminal daemon both run."""
-    session = get_session()
-    daemon = start_daemon(session.env)
-    try:
-        assert wait_until(lambda: os.path.exists(daemon_socket(session.domain_id)), 15)
-        run_console(console_env(session), "ros2 node list")  # the daemon's client is up
-        yield session
-    finally:
-        daemon.stop()
-        session.close()
 
 
 def _raw(session: Session) -> list[str]:

@@ -55,6 +55,8 @@
   // connects again and restarts that kernel (new, idle, nothing run in it yet: nothing is
   // lost), whose "starting" then reaches the page.
   var STUCK_MS = 10000;
+  // ... and not again while the restart it asked for may still be under way (a busy host)
+  var HEAL_AGAIN_MS = 60000;
 
   function wakeUp(kernel) {
     console.warn(NAME + ": the kernel connection stayed unknown; connecting and restarting");
@@ -69,6 +71,7 @@
     }
     context.__ros2CourseHeals = true;
     var timer = null;
+    var healed = -Infinity;
     context.statusChanged.connect(function (_sender, status) {
       if (timer !== null) {
         clearTimeout(timer);
@@ -80,7 +83,9 @@
       timer = setTimeout(function () {
         timer = null;
         var kernel = context.session && context.session.kernel;
-        if (kernel && kernel.status === "unknown" && kernel.connectionStatus === "connected") {
+        var due = Date.now() - healed >= HEAL_AGAIN_MS;
+        if (due && kernel && kernel.status === "unknown" && kernel.connectionStatus === "connected") {
+          healed = Date.now();
           wakeUp(kernel).catch(function () {});
         }
       }, STUCK_MS);
