@@ -58,6 +58,9 @@ def course_server_options() -> list[str]:
         # lab_settings/page_config.json: the course's extensions come prebuilt),
         # `node-version-check` and `yarn config`. About 1.6 CPU-s on a busy 2-core host.
         "--LanguageServerManager.autodetect=False",
+        # one ill-sized websocket message cost a server 3 GiB (kernel_socket.py: why)
+        "--ServerApp.kernel_websocket_connection_class="
+        "course_lib.lab.kernel_socket.CourseKernelConnection",
     ]
 
 

@@ -5,7 +5,8 @@ Found by `make chaos` (issue 62): a kernel killed while Run All ran came back on
 (idle), but now and then the page's connection stayed "Unknown" and every cell waited behind it
 for ever (the server, idle, answered nothing on that socket; JupyterLab waits on an open socket for
 ever). Here the socket breaks on purpose: the page's kernel websocket is routed through the
-test, which passes nothing from the server on from a restart on.
+test, which passes nothing from the server on from a restart on; then the first heal's socket
+breaks too (a chaos walk saw "Unknown" for 300 s: the extension healed once and never again).
 """
 
 from __future__ import annotations
@@ -20,8 +21,9 @@ pytestmark = [pytest.mark.browser, pytest.mark.ros, pytest.mark.slow]
 
 LESSONS = ["02_key_points.ipynb"]
 # the extension reconnects after 10 s of "unknown" and restarts the kernel (seen taking 20 s
-# more on 2 busy cores in a whole suite run)
-HEALED_WITHIN_S = 60.0
+# more on 2 busy cores in a whole suite run); a heal that did not take is tried again a minute on
+HEAL_AGAIN_S = 60.0
+HEALED_WITHIN_S = 60.0 + HEAL_AGAIN_S
 _STATE = """() => {
   const context = window.jupyterapp.shell.currentWidget.sessionContext;
   const kernel = context.session?.kernel;
@@ -37,11 +39,11 @@ def test_a_kernel_connection_stuck_unknown_connects_again(  # type: ignore[no-un
     said: list[str] = []
     page.on("console", lambda message: said.append(message.text))
 
-    break_next = {"armed": False}
+    break_next = {"armed": 0}  # how many sockets opened from now on pass nothing on
 
     def route(ws) -> None:  # type: ignore[no-untyped-def]
-        state: dict[str, object] = {"broken": break_next["armed"], "dropped": 0}
-        break_next["armed"] = False
+        state: dict[str, object] = {"broken": break_next["armed"] > 0, "dropped": 0}
+        break_next["armed"] = max(0, break_next["armed"] - 1)
         sockets.append(state)
         server = ws.connect_to_server()
         ws.on_message(server.send)
@@ -61,7 +63,9 @@ def test_a_kernel_connection_stuck_unknown_connects_again(  # type: ignore[no-un
     assert sockets, "the kernel's websocket was not routed: nothing would be tested"
 
     opened = len(sockets)
-    break_next["armed"] = True  # the socket the restart opens passes nothing from the server
+    # the restart's socket passes nothing on, nor do the first heal's two (it connects again,
+    # then restarts the kernel, which connects once more)
+    break_next["armed"] = 3
     lab_page.restart_kernel()
     stuck_since = time.monotonic()
     page.wait_for_timeout(3000)
@@ -73,8 +77,10 @@ def test_a_kernel_connection_stuck_unknown_connects_again(  # type: ignore[no-un
             f" {page.evaluate(_STATE)} {sockets} {[t for t in said if 'ros2' in t]}"
         )
         page.wait_for_timeout(500)
-    assert len(sockets) >= opened + 2, "healed without a new connection?"
-    assert sockets[opened]["broken"] and sockets[opened]["dropped"], sockets
+    assert len(sockets) >= opened + 4, "healed without a second heal's connection?"
+    assert all(s["broken"] for s in sockets[opened : opened + 3]), sockets
+    assert sockets[opened]["dropped"], sockets
+    assert time.monotonic() - stuck_since > HEAL_AGAIN_S, "healed before the second try?"
     assert any("reconnecting" in text for text in said), said
     cell = lab_page.add_cell("print(6 * 7)")
     lab_page.screenshot(artifacts / "healed.png")

@@ -68,3 +68,15 @@ def test_a_killed_labs_marker_is_ignored_and_removed(markers: list) -> None:
     markers.append(marker)
     assert lab_markers.running_lab_domain() != "78"
     assert not marker.exists()
+
+
+def test_a_legacy_header_fits_its_message_or_is_refused() -> None:
+    from course_lib.lab.kernel_socket import legacy_header_fits
+
+    header = b"".join(n.to_bytes(4, "big") for n in (2, 12, 14))  # 2 parts, their offsets
+    two_parts = header + b"{}[]"
+    assert legacy_header_fits(two_parts)
+    assert not legacy_header_fits((6).to_bytes(8, "little") + bytes(56))  # 100,663,296 parts
+    assert not legacy_header_fits(b"\x00\x00")
+    assert not legacy_header_fits((0).to_bytes(4, "big") + bytes(8))
+    assert not legacy_header_fits((-1).to_bytes(4, "big", signed=True) + bytes(8))

@@ -72,23 +72,30 @@
     context.__ros2CourseHeals = true;
     var timer = null;
     var healed = -Infinity;
+    // Looked at again while the status stays "unknown": a first heal whose own restart got
+    // stuck too (seen in `make chaos`: 300 s "Unknown") is followed by another, a minute on.
+    function check() {
+      timer = null;
+      var kernel = context.session && context.session.kernel;
+      if (context.isDisposed || !kernel || kernel.status !== "unknown") {
+        return;
+      }
+      var wait = healed + HEAL_AGAIN_MS - Date.now();
+      if (wait <= 0 && kernel.connectionStatus === "connected") {
+        healed = Date.now();
+        wait = HEAL_AGAIN_MS;
+        wakeUp(kernel).catch(function () {});
+      }
+      timer = setTimeout(check, Math.max(wait, STUCK_MS));
+    }
     context.statusChanged.connect(function (_sender, status) {
       if (timer !== null) {
         clearTimeout(timer);
         timer = null;
       }
-      if (status !== "unknown") {
-        return;
+      if (status === "unknown") {
+        timer = setTimeout(check, STUCK_MS);
       }
-      timer = setTimeout(function () {
-        timer = null;
-        var kernel = context.session && context.session.kernel;
-        var due = Date.now() - healed >= HEAL_AGAIN_MS;
-        if (due && kernel && kernel.status === "unknown" && kernel.connectionStatus === "connected") {
-          healed = Date.now();
-          wakeUp(kernel).catch(function () {});
-        }
-      }, STUCK_MS);
     });
   }
 
