@@ -10,12 +10,14 @@ goes through core.host.procfs.
 from __future__ import annotations
 
 from collections.abc import Callable, Collection, Iterable, Sequence
+from typing import Any
 
 from ..core.host import procfs
 
 __all__ = [
     "bound_participants",
     "dead_participants",
+    "endpoint_holders",
     "participant_prefix",
     "prefix_pid",
     "present_participants",
@@ -28,6 +30,16 @@ __all__ = [
 def participant_prefix(endpoint_gid: Sequence[int]) -> tuple[int, ...]:
     """Return the participant part (GUID prefix) of a DDS endpoint's GID."""
     return tuple(endpoint_gid[:12])
+
+
+def endpoint_holders(endpoints: Iterable[Any]) -> dict[str, set[tuple[int, ...]]]:
+    """Return the participants (GUID prefixes) holding endpoints of each node, by full name,
+    from rclpy `TopicEndpointInfo`s."""
+    holders: dict[str, set[tuple[int, ...]]] = {}
+    for info in endpoints:
+        full = info.node_namespace.rstrip("/") + "/" + info.node_name
+        holders.setdefault(full, set()).add(participant_prefix(info.endpoint_gid))
+    return holders
 
 
 def prefix_pid(prefix: Sequence[int]) -> int:

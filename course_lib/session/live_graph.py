@@ -21,7 +21,12 @@ from rclpy.node import Node, NodeNameNonExistentError
 from rclpy.topic_endpoint_info import TopicEndpointInfo
 
 from ..core.host import procfs
-from .dds_participants import dead_participants, participant_prefix, read_bound_participants
+from .dds_participants import (
+    dead_participants,
+    endpoint_holders,
+    participant_prefix,
+    read_bound_participants,
+)
 
 __all__ = ["LIVENESS_TTL_S", "TOOL_NODES", "LiveGraphNode"]
 
@@ -54,13 +59,12 @@ class LiveGraphNode(Node):
         now = time.monotonic()
         if self._look is not None and now - self._look[0] < LIVENESS_TTL_S:
             return self._look[1], self._look[2]
-        holders: dict[str, set[Prefix]] = {}
-        for topic, _types in super().get_topic_names_and_types(no_demangle=True):
-            if not topic.startswith("rt/"):
-                continue
-            for info in self._endpoints(topic, mangled=True):
-                full = _full_name(info.node_name, info.node_namespace)
-                holders.setdefault(full, set()).add(participant_prefix(info.endpoint_gid))
+        holders = endpoint_holders(
+            info
+            for topic, _types in super().get_topic_names_and_types(no_demangle=True)
+            if topic.startswith("rt/")
+            for info in self._endpoints(topic, mangled=True)
+        )
         seen = set().union(*holders.values()) if holders else set()
         bound = read_bound_participants(self._domain_id)
         dead = dead_participants(seen, bound, procfs.pids()) if seen else frozenset()

@@ -6,11 +6,7 @@ from typing import Any
 
 from .graph_client import YOUNG_CLIENT_S
 
-__all__ = ["COURSE_CLIENTS", "lookup", "own_prefix", "services", "topics", "types_of"]
-
-# The client nodes of the course's kernels and daemons (course_lib.session.session): like ros2cli's
-# own nodes, they offer no services to the learner.
-COURSE_CLIENTS = "/_course_client_"
+__all__ = ["lookup", "own_prefix", "services", "topics", "types_of"]
 
 
 def own_prefix(client: Any) -> str:

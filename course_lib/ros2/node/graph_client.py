@@ -26,6 +26,7 @@ from .discovery import (
 )
 from .participants import (
     domain_newcomers,
+    endpoint_holders,
     participant_prefix,
     prefix_pid,
     read_bound_participants,
@@ -253,14 +254,12 @@ class GraphClient:
         """Return the participants holding endpoints of each node name, and whether every
         participant bound on this host has been seen (the graph is settled)."""
         node = self.node
-        holders: dict[str, set[tuple[int, ...]]] = {}
-        for topic, _types in node.get_topic_names_and_types(no_demangle=True):
-            for info in (
-                *node.get_publishers_info_by_topic(topic, no_mangle=True),
-                *node.get_subscriptions_info_by_topic(topic, no_mangle=True),
-            ):
-                full = info.node_namespace.rstrip("/") + "/" + info.node_name
-                holders.setdefault(full, set()).add(participant_prefix(info.endpoint_gid))
+        holders = endpoint_holders(
+            info
+            for topic, _types in node.get_topic_names_and_types(no_demangle=True)
+            for query in (node.get_publishers_info_by_topic, node.get_subscriptions_info_by_topic)
+            for info in query(topic, no_mangle=True)
+        )
         bound = read_bound_participants(self._domain_id)
         seen = set().union(*holders.values()) if holders else set()
         return holders, bound is not None and unseen_participants(bound, seen) == 0

@@ -16,6 +16,7 @@ from collections.abc import Sequence
 from ...core.host import procfs
 from ...session.dds_participants import (
     bound_participants,
+    endpoint_holders,
     participant_prefix,
     prefix_pid,
     present_participants,
@@ -28,6 +29,7 @@ __all__ = [
     "UNJOINED_S",
     "bound_participants",
     "domain_newcomers",
+    "endpoint_holders",
     "of_domain_here",
     "participant_prefix",
     "prefix_pid",

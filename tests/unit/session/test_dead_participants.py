@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from course_lib.session.dds_participants import dead_participants
+from types import SimpleNamespace
+
+from course_lib.session.dds_participants import dead_participants, endpoint_holders
 
 
 def _prefix(pid: int) -> tuple[int, ...]:
@@ -44,3 +46,22 @@ def test_without_proc_none_is_dead() -> None:
 
 def test_the_low_16_bits_of_a_pid_name_it() -> None:
     assert dead_participants([_prefix(0x0042)], 1, [0x10042], _runs) == frozenset()
+
+
+def test_endpoint_holders_name_each_node_by_its_participants() -> None:
+    def endpoint(namespace: str, name: str, pid: int) -> SimpleNamespace:
+        gid = [*_prefix(pid), 0, 0, 1, 3]
+        return SimpleNamespace(node_namespace=namespace, node_name=name, endpoint_gid=gid)
+
+    holders = endpoint_holders(
+        [
+            endpoint("/", "param_vel_node", NODE),
+            endpoint("/", "param_vel_node", NODE),
+            endpoint("/", "param_vel_node", KILLED),
+            endpoint("/robot", "sim", CLIENT),
+        ]
+    )
+    assert holders == {
+        "/param_vel_node": {_prefix(NODE), _prefix(KILLED)},
+        "/robot/sim": {_prefix(CLIENT)},
+    }
