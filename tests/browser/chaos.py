@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 
 import psutil
 from lab_graph import _plain
+from lesson_checks import PROBES, lesson_number
 from terminal import Terminal
 from walk import Step, Walker, seed_and_count
 
@@ -68,6 +69,12 @@ FAULTS = (
 def chaos_settings(default_faults: int, default_seed: int | None = None) -> tuple[int, int]:
     """Return (seed, faults) from CHAOS_SEED and CHAOS_FAULTS (see `seed_and_count`)."""
     return seed_and_count("CHAOS_SEED", "CHAOS_FAULTS", default_faults, default_seed)
+
+
+# the notebooks the page holds unsaved changes of (JupyterLab's own model, exposed to tests)
+_UNSAVED = """() => Array.from(window.jupyterapp.shell.widgets('main'))
+  .filter((w) => w.context && w.context.model.dirty)
+  .map((w) => w.context.path.split('/').pop())"""
 
 
 @dataclass
@@ -202,8 +209,14 @@ class ChaosWalker(Walker):
 
     def _reopen_page(self) -> None:
         """Load the lab's address again, as a learner does after closing the tab or pressing
-        F5: JupyterLab restores the open notebooks; their kernels kept running."""
+        F5: JupyterLab restores the open notebooks as last saved; their kernels kept running.
+
+        What was typed since the last save (JupyterLab autosaves every 20 s; the browser asks
+        before it leaves unsaved edits) is dropped with the page: a probe cell the walk added
+        to a notebook marked unsaved is typed again, as the learner would. A notebook that was
+        saved and comes back without its probe is a defect (its next Run All says so)."""
         page, lab = self.ui.page, self.ui.lab
+        unsaved = set(page.evaluate(_UNSAVED))
         page.goto(f"{lab.base_url}/lab?token={lab.token}")
         page.locator(".jp-DirListing-item").first.wait_for()
         for name in self.opened:
@@ -211,6 +224,14 @@ class ChaosWalker(Walker):
                 ".lm-TabBar-tabLabel", has_text=re.compile(rf"^{re.escape(name)}$")
             )
             label.first.wait_for(state="attached")
+        for name in sorted(unsaved & set(self.opened)):
+            probe = PROBES.get(lesson_number(name))
+            if probe is None:
+                continue
+            self.ui.show(name)
+            if not any(probe[0] in cell.source for cell in self.ui.cells()):
+                self.log(f"  {name} was not saved yet: its probe cell is typed again")
+                self.ui.add_cell(probe[0])
 
     def _read_kernel_died(self) -> None:
         """Read JupyterLab's notice of a dead kernel (it starts a new one) and close it, as the
