@@ -107,14 +107,21 @@ def report(violations: list[Violation]) -> str:
     return "\n".join([summary or "none", *(v.line() for v in violations[:40])])
 
 
-def audit_lesson(page: Any, source: str) -> dict[str, list[Violation]]:
+def audit_lesson(
+    page: Any, source: str, *, with_jupyterlab: bool = False
+) -> dict[str, list[Violation]]:
     """Audit a JupyterLab page showing a lesson that ran: return the violations in its
-    cells' outputs ("outputs"), in its 3D views' frames ("view"), and JupyterLab's own
-    ("jupyterlab", listed apart: the course does not draw them)."""
+    cells' outputs ("outputs") and in its 3D views' frames ("view"); `with_jupyterlab`, also
+    JupyterLab's own ("jupyterlab", listed apart: the course does not draw them). The whole
+    page's audit grows with every notebook open (about as much as the rest): a walk asks for
+    it once, with all its lessons open."""
     course = audit(page, source, [OUTPUTS])
     frames = [h.content_frame() for h in page.locator(VIEW).element_handles()]
     views = [v for frame in frames if frame is not None for v in audit(frame, source)]
-    mine = {(v.rule, v.target) for v in course}
-    whole = audit(page, source)
-    lab = [v for v in whole if (v.rule, v.target) not in mine and "iframe" not in v.target]
-    return {"outputs": course, "view": views, "jupyterlab": lab}
+    audited = {"outputs": course, "view": views}
+    if with_jupyterlab:
+        mine = {(v.rule, v.target) for v in course}
+        whole = audit(page, source)
+        lab = [v for v in whole if (v.rule, v.target) not in mine and "iframe" not in v.target]
+        audited["jupyterlab"] = lab
+    return audited
