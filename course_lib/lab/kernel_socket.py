@@ -5,10 +5,11 @@ A message in the old ("legacy") binary format starts with its number of parts, a
 jupyter_server unpacks that many offsets with a `struct` format it builds on the spot, which
 `struct` then keeps in its cache. A header of `06 00 00 00` (a message in the current
 protocol, v1, read as a legacy one) asks for 100,663,296 offsets: one 64-byte message took a
-server from 77 MiB to 3,342 MiB, measured here. `make chaos` met it in a lab whose server was
-stopped for 10 s while its page went on: jupyter_server reads the protocol from the socket each
-time and, once the socket has closed, takes it for legacy, so a v1 message the page sent
-before leaving was read as a legacy one.
+server from 77 MiB to 3,342 MiB, measured here, and the server closed that socket. A `make
+chaos` walk left a lab server at 3.4 GB: 3,072 MiB in one cached `struct`, exactly what a v1
+message read as legacy asks for. jupyter_server reads the protocol from the socket at each
+message and answers legacy once tornado has let go of it; how a v1 socket got there in the walk
+(a page reloaded, the lab stopped 10 s) was not reproduced alone.
 
 So the protocol a socket chose is remembered, and a legacy binary message whose header does
 not fit the message is refused (a warning in the server's log) instead of unpacked.

@@ -92,7 +92,9 @@ async def _talk(lab: LabServer, *, v1: bool) -> list[str]:
         replies: list[str] = []
         while "kernel_info_reply" not in replies:
             frame = await asyncio.wait_for(socket.read_message(), timeout=30)
-            assert frame is not None, "the server closed the kernel's websocket"
+            if frame is None:  # the server closed the socket (a stock server, on that message)
+                replies.append("closed")
+                break
             if isinstance(frame, bytes):
                 replies.append(_v1_reply_type(frame))
             else:
@@ -110,8 +112,8 @@ def test_an_ill_sized_legacy_header_costs_the_server_nothing(lab: LabServer) -> 
     before = server.memory_info().rss >> 20
     replies = asyncio.run(_talk(lab, v1=False))
     after = server.memory_info().rss >> 20
-    assert "kernel_info_reply" in replies, "the socket is no longer usable"
     assert after - before < GROWTH_ALLOWED_MIB, f"the server grew from {before} to {after} MiB"
+    assert "kernel_info_reply" in replies, f"the socket is no longer usable: {replies}"
 
 
 def test_the_current_protocol_still_bridges(lab: LabServer) -> None:
