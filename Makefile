@@ -11,7 +11,7 @@ STAMP_ROS2 := $(VENV)/.ros2-launcher
 # installs them by glob).
 ROSJECT_SOURCES := $(shell find rosject -path rosject/build -prune -o -path rosject/install -prune -o -path rosject/log -prune -o \( -name package.xml -o -name setup.py -o -name setup.cfg -o -name CMakeLists.txt -o -name '*.in' -o -name '*.msg' -o -name '*.srv' -o -name '*.action' -o -path '*/resource/*' -o -type d \( -name launch -o -name config \) \) -print 2>/dev/null)
 
-.PHONY: lab setup hub test test-fast soak chaos bench book notebooks check-config lint format clean doctor stop smoke-python
+.PHONY: lab setup hub image test test-fast soak chaos bench book notebooks check-config lint format clean doctor stop smoke-python
 
 lab: setup  ## Check config/, then start JupyterLab on the first lesson (EXTRA=... passes options to jupyter lab)
 	$(PY) -m course_lib lab $(EXTRA)
@@ -23,6 +23,9 @@ setup: $(STAMP_ENV) $(STAMP_WS) $(STAMP_ROS2)  ## Build the environment and the 
 
 hub: setup  ## Start the class's JupyterHub (as root: `sudo make hub`; settings in config/hub.yaml)
 	$(PY) -m course_lib hub $(EXTRA)
+
+image:  ## Build the course's image (Dockerfile: a learner's lab, Binder, dev container; IMAGE=name:tag, TARGET=singleuser for Kubernetes)
+	scripts/build_image.sh
 
 test: setup  ## Run the whole test suite (unit, integration, notebooks, browser)
 	$(PY) tests/harness/run_suite.py

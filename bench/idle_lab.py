@@ -1,6 +1,7 @@
 """What an idle lab costs: one lab with the world running, the robot still, nobody watching.
 
 Run: .venv/bin/python -m bench.idle_lab [--seconds 60] [--settle 20] [--runs 1]
+     [--velocity 0.0] [--json]
 An idle lab is what a learner leaves behind after lesson 7's first cells (start(7), the world,
 `%ros2 run parameter_tests param_vel`) with the velocity at 0, no 3D view open in a browser and
 no cell running. The bench starts one such lab (as `make lab` does) and one real kernel, waits
@@ -8,18 +9,21 @@ no cell running. The bench starts one such lab (as `make lab` does) and one real
 in cores) over `--seconds`, and prints one table per run: every process, the total, and the
 total beside `param_vel` (the tutorial's node ticks 10 times a second by design; issue 66's goal
 is that the rest costs at most 0.005 cores). With `--runs` > 1 the same lab is measured again
-and the median of each row is printed last.
+and the median of each row is printed last. `--velocity 0.2` measures a driving learner instead;
+`--json` prints the last window's totals (cores, PSS in MiB) as one JSON line (bench.image
+compares a lab in the course's image with a native one this way).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import signal
 import statistics
 import time
 
 from bench._labs import LabKernel, start_lab, tree_pids
-from bench.class_capacity import _cpu_seconds, _label
+from bench.class_capacity import _cpu_seconds, _label, _pss_mib
 
 GOAL_CORES = 0.005  # issue 66: an idle lab beside the tutorial's own node
 TUTORIAL_NODE = "param_vel"
@@ -29,8 +33,8 @@ SETUP = [
     "from course_lib.lessons import start\n\nlesson = start(7)",
     "world = lesson.world()",
     "%ros2 run parameter_tests param_vel",
-    "%ros2 param set /param_vel_node velocity 0.0",
 ]
+VELOCITY_CELL = "%ros2 param set /param_vel_node velocity {velocity}"
 
 
 def measure(roots: list[int], seconds: float) -> dict[str, float]:
@@ -80,20 +84,26 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=60.0, help="window measured (60)")
     parser.add_argument("--settle", type=float, default=20.0, help="wait before measuring (20)")
     parser.add_argument("--runs", type=int, default=1, help="windows measured on one lab (1)")
+    parser.add_argument("--velocity", type=float, default=0.0, help="the robot's (0.0: still)")
+    parser.add_argument("--json", action="store_true", help="print the totals as JSON only")
     args = parser.parse_args()
     signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop everything on SIGTERM too
     lab = start_lab()
     kernel = None
     try:
         kernel = LabKernel(lab)
-        for cell in SETUP:
+        for cell in [*SETUP, VELOCITY_CELL.format(velocity=args.velocity)]:
             kernel.run(cell)
         time.sleep(args.settle)
         runs = []
         for number in range(1, args.runs + 1):
             runs.append(measure([lab.pid, kernel.pid], args.seconds))
-            print(table(f"run {number}, {args.seconds:g} s:", runs[-1]), flush=True)
-        if len(runs) > 1:
+            if not args.json:
+                print(table(f"run {number}, {args.seconds:g} s:", runs[-1]), flush=True)
+        if args.json:
+            pss = sum(_pss_mib(tree_pids([lab.pid, kernel.pid])).values())
+            print(json.dumps({"cores": sum(runs[-1].values()), "pss_mib": pss}), flush=True)
+        elif len(runs) > 1:
             print(table(f"medians of {len(runs)} runs:", medians(runs)), flush=True)
     finally:
         if kernel is not None:

@@ -43,6 +43,12 @@ def _hub_lab(args: argparse.Namespace) -> int:
     return run_hub_lab(args.extra)
 
 
+def _image(args: argparse.Namespace) -> int:
+    from .image_entry import main as image_main
+
+    return image_main(args.extra)
+
+
 def _notebooks(args: argparse.Namespace) -> int:
     from .notebook_outputs import refresh_notebooks
 
@@ -112,6 +118,7 @@ COMMANDS = {
     "lab": (_lab, "start JupyterLab on the first lesson"),
     "hub": (_hub, "start the class's JupyterHub (config/hub.yaml; as root)"),
     "hub-lab": (_hub_lab, "a learner's server on the class hub (started by the hub)"),
+    "image": (_image, "the course's image: a learner's lab, or the command given (Dockerfile)"),
     "notebooks": (_notebooks, "re-execute the notebooks to refresh their stored outputs"),
     "check-config": (_check_config, "check every file of config/, alone and together"),
     "doctor": (_doctor, "say what is installed and which course processes run"),
