@@ -7,12 +7,10 @@ relative links only, so it works opened from a folder or served under any path.
 
 from __future__ import annotations
 
-import contextlib
-import io
 import shutil
+import subprocess
 import sys
 import time
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -60,19 +58,24 @@ def stage_sources(src: Path, recorded: dict[int, Recording]) -> None:
 
 
 def run_sphinx(src: Path, site: Path, doctrees: Path) -> str:
-    """Run Sphinx's HTML builder; return its warnings (empty: none)."""
-    from sphinx.cmd.build import build_main
+    """Run Sphinx's HTML builder in a process of its own; return its warnings (empty: none).
 
-    said = io.StringIO()
-    with contextlib.redirect_stderr(said), warnings.catch_warnings():
+    Its own process: an extension's set-up outlives its build in the process that ran it
+    (after a build with myst_nb, another process-mate's `.md` page still asked for myst_nb's
+    parser: "Source parser for myst-nb not registered")."""
+    argv = [
+        sys.executable,
         # the extensions' use of APIs Sphinx will remove is theirs to fix, not a page's fault
         # (under a "warnings are errors" filter, such as the tests', it would stop the build)
-        warnings.simplefilter("ignore", DeprecationWarning)
-        warnings.simplefilter("ignore", PendingDeprecationWarning)
-        status = build_main(["-b", "html", "-q", "-E", "-d", str(doctrees), str(src), str(site)])
-    text = said.getvalue().strip()
-    if status and not text:
-        text = f"sphinx-build exited with status {status}"
+        "-W", "ignore::DeprecationWarning",
+        "-W", "ignore::PendingDeprecationWarning",
+        "-m", "sphinx",
+        "-b", "html", "-q", "-E", "-d", str(doctrees), str(src), str(site),
+    ]  # fmt: skip
+    done = subprocess.run(argv, capture_output=True, text=True, check=False)
+    text = done.stderr.strip()
+    if done.returncode and not text:
+        text = f"sphinx-build exited with status {done.returncode}"
     return text
 
 
