@@ -30,6 +30,7 @@ from course_image import (
     engine,
     host_mounts_of,
     remove_leftovers,
+    repo2docker,
     start_build,
 )
 from notebook_ui import run_all_cells, wait_all_ran
@@ -209,6 +210,25 @@ def test_the_kubernetes_stage_runs_the_charts_jupyterhub(image: str) -> None:
         assert shown.stdout.strip() == wanted[1], shown
     finally:
         subprocess.run([TOOL, "rmi", tag], capture_output=True)
+
+
+def test_binder_builds_this_dockerfile_as_the_learner_uid_1000() -> None:
+    """What Binder reads: repo2docker picks the repository's Dockerfile as it is (its last
+    stage, built with NB_USER=jovyan and NB_UID=1000, the Dockerfile's own defaults: the image
+    checked above). Its full build through podman's Docker API ran by hand (the note of issue
+    60): a second build of every layer in each run would cost minutes of CI."""
+    shown = subprocess.run(
+        [str(repo2docker()), "--no-build", "--debug", "--user-id", "1000",
+         "--user-name", "jovyan", str(REPO_ROOT)],
+        capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert shown.returncode == 0, shown.stderr[-2000:]
+    said = shown.stdout + shown.stderr
+    dockerfile = (REPO_ROOT / "Dockerfile").read_text()
+    first_line = dockerfile.splitlines()[0]
+    assert first_line in said, f"repo2docker did not pick the Dockerfile:\n{said[-2000:]}"
+    picked = said[said.index(first_line) :].strip()
+    assert picked.startswith(dockerfile.strip()), "repo2docker changed the Dockerfile"
 
 
 def _nobody_listens(port: int) -> None:

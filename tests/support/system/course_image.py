@@ -7,11 +7,14 @@ removed before the next starts.
 
 from __future__ import annotations
 
+import hashlib
 import os
 import re
 import shutil
 import socket
 import subprocess
+import sys
+import tempfile
 import time
 import urllib.request
 from dataclasses import dataclass, field
@@ -28,6 +31,7 @@ __all__ = [
     "engine",
     "host_mounts_of",
     "remove_leftovers",
+    "repo2docker",
     "start_build",
 ]
 
@@ -35,6 +39,10 @@ TEST_IMAGE = "ros2-params-course:test"
 LABEL = "ros2-params-course-test=1"
 LEARNER_HOME = "/home/jovyan"
 BUILD_LOG = REPO_ROOT / "test-artifacts" / "image-build.log"
+# Binder's builder. 2024.7.0 is the last release that builds through the engine's Docker API
+# (podman's `podman system service` serves it); 2025.8.0 and newer run `podman buildx version`
+# first, which Debian 12's podman 4.3 does not have ("unrecognized command").
+REPO2DOCKER = "jupyter-repo2docker==2024.7.0"
 _URL = re.compile(r"http://127\.0\.0\.1:8888(/lab/tree/\S+)\?token=([0-9a-f]+)")
 _OPENER = urllib.request.build_opener(urllib.request.ProxyHandler({}))
 
@@ -65,6 +73,20 @@ def start_build(
     )
     log.close()
     return started
+
+
+def repo2docker() -> Path:
+    """Return the `jupyter-repo2docker` program of REPO2DOCKER, installed on first use in a
+    virtual environment of its own (kept in the temporary folder for the next run)."""
+    digest = hashlib.sha256(REPO2DOCKER.encode()).hexdigest()[:12]
+    folder = Path(tempfile.gettempdir()) / f"ros2-course-repo2docker-{digest}"
+    program = folder / "bin" / "jupyter-repo2docker"
+    if not program.exists():
+        shutil.rmtree(folder, ignore_errors=True)
+        subprocess.run([sys.executable, "-m", "venv", str(folder)], check=True)
+        pip = [str(folder / "bin" / "python"), "-m", "pip", "install", "--quiet"]
+        subprocess.run([*pip, "--disable-pip-version-check", REPO2DOCKER], check=True)
+    return program
 
 
 def remove_leftovers(tool: str) -> None:
