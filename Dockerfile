@@ -34,10 +34,10 @@ RUN python3 -m venv .venv \
             -r environment.txt \
         || .venv/bin/python -m pip install --quiet --disable-pip-version-check \
             -r environment.txt; } \
-    && rm -rf /root/.cache
+    && rm -rf "$HOME/.cache"
 COPY . .
 # `make doctor` fails the build when the course would not work (rclpy, tf2_msgs, the camera).
-RUN make setup PYTHON=python3 && make doctor && rm -rf /root/.cache
+RUN make setup PYTHON=python3 && make doctor && rm -rf "$HOME/.cache"
 
 # The learner: uid 1000, as Binder and Zero to JupyterHub run it. Their home holds their work
 # (their notebooks, my_files/, their own workspaces): mount a volume there to keep it.

@@ -19,7 +19,7 @@ def test_a_jupyter_servers_command_is_the_labs_options() -> None:
 
 
 def test_the_learners_lab_listens_on_the_containers_port_lesson_1_first() -> None:
-    argv = image_lab_argv(Path("/home/jovyan/ros2-params-course"))(["--port=9999"])
+    argv = image_lab_argv(Path("learner") / "ros2-params-course")(["--port=9999"])
     assert argv[1] == "lab" and "--no-browser" in argv
     assert "--ServerApp.ip=0.0.0.0" in argv and f"--ServerApp.port={IMAGE_PORT}" in argv
     assert f"--LabApp.default_url={DEFAULT_URL}" in argv
