@@ -36,7 +36,8 @@ def test_binder_builds_the_course_as_uid_1000_from_its_build_arguments() -> None
 
 def test_the_build_context_leaves_out_what_is_built_or_private() -> None:
     ignored = (REPO / ".dockerignore").read_text().splitlines()
-    for path in (".venv", "rosject/build", "rosject/install", "config/hub.yaml", ".git"):
+    built = (".venv", "rosject/build", "rosject/install", ".pytest_cache")
+    for path in (*built, "config/hub.yaml", ".git"):
         assert path in ignored, path
 
 
