@@ -3,7 +3,7 @@
 It also proves the install works, each in a child process of its own (a crash or a hang
 there is a failed check, not a dead doctor): rclpy starts with its middleware, the course's
 workspace gives `tf2_msgs`, and the simulation renders its camera offscreen. `make doctor`
-exits non-zero when one of them fails, so the image's build (deploy/kubernetes/Dockerfile)
+exits non-zero when one of them fails, so the image's build (the Dockerfile, `make image`)
 stops on a broken install.
 """
 

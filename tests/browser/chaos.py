@@ -293,16 +293,21 @@ class ChaosWalker(Walker):
     def _strays(self, inside: set[int]) -> list[str]:
         """Return the live processes of the lab's ROS domain that are neither in the lab's tree
         nor owned by the lab (a daemon a command started again after the lab's was killed runs
-        detached, tagged with its lab, and ends with it)."""
+        detached, tagged with its lab, and ends with it). Only this network namespace's: a
+        container's lab may lease the same domain number, and no DDS message crosses to it
+        (ci, beside the image checks: the container's world was listed as a stray)."""
         strays = []
+        network = os.stat("/proc/self/ns/net").st_ino
         for process in psutil.process_iter():
             try:
+                if os.stat(f"/proc/{process.pid}/ns/net").st_ino != network:
+                    continue
                 mine = process.environ().get("ROS_DOMAIN_ID") == str(self.ui.lab.domain_id)
                 outside = process.pid not in inside and process.pid != os.getpid()
                 outside = outside and not self._owned(process)
                 if mine and outside and process.status() != psutil.STATUS_ZOMBIE:
                     strays.append(f"{process.pid} {' '.join(process.cmdline())[:100]}")
-            except psutil.Error:
+            except (psutil.Error, OSError):
                 continue
         return strays
 
