@@ -11,7 +11,6 @@ import hashlib
 import os
 import re
 import shutil
-import socket
 import subprocess
 import sys
 import tempfile
@@ -20,6 +19,7 @@ import urllib.request
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from course_lib.core.host.ports import free_port
 from course_lib.core.paths import REPO_ROOT
 
 __all__ = [
@@ -97,13 +97,6 @@ def remove_leftovers(tool: str) -> None:
     ).stdout.split()
     if listed:
         subprocess.run([tool, "rm", "-f", "-t", "0", *listed], capture_output=True)
-
-
-def free_port() -> int:
-    """Return a TCP port nobody listens on now."""
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 @dataclass
