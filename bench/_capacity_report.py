@@ -18,7 +18,9 @@ import psutil
 
 RTF_GOAL = 0.95
 GET_GOAL_MS = 20.0
-MEMORY_GOAL_MIB = 250.0  # PSS per learner; reported beside the goals, never stops the run
+MEMORY_GOAL_MIB = 200.0  # PSS per learner; reported beside the goals, never stops the run
+IDLE_GOAL_CORES = 0.005  # an idle learner beside the tutorial's own node (bench.idle_lab)
+TUTORIAL_NODE = "param_vel"  # ticks ten times a second by design: not an idle lab's own cost
 GOALS = ("real-time factor", "param get median", "param get p99")
 REPO = Path(__file__).resolve().parents[1]
 RECORD = REPO / "deploy" / "capacity.yaml"
@@ -40,6 +42,26 @@ class Figures:
 
 
 @dataclass
+class Usage:
+    """What one learner's processes used over the window: cores and PSS, by process."""
+
+    by_process: dict[str, tuple[float, float]] = field(default_factory=dict)  # cores, MiB
+
+    @property
+    def cpu_cores(self) -> float:
+        return sum(cores for cores, _ in self.by_process.values())
+
+    @property
+    def pss_mib(self) -> float:
+        return sum(mib for _, mib in self.by_process.values())
+
+    @property
+    def beside_tutorial(self) -> float:
+        """Return the cores of every process but the tutorial's own node."""
+        return sum(c for label, (c, _) in self.by_process.items() if TUTORIAL_NODE not in label)
+
+
+@dataclass
 class Round:
     """One N: every learner's figures and the host's."""
 
@@ -50,6 +72,7 @@ class Round:
     load: tuple[float, float, float]
     mem_used_mib: float
     failures: list[str] = field(default_factory=list)
+    idle: list[Usage] = field(default_factory=list)  # the idle learners beside the drivers
 
     @property
     def n(self) -> int:
@@ -129,21 +152,43 @@ def print_round(result: Round) -> None:
     )
 
 
-def print_processes(result: Round) -> None:
-    """Print where one learner's CPU and memory go (the mean over the round's learners)."""
+def mean_processes(
+    tables: list[dict[str, tuple[float, float]]],
+) -> dict[str, tuple[float, float]]:
+    """Return the mean cores and MiB of each process label over learners' tables (pure)."""
     totals: dict[str, list[float]] = {}
-    for f in result.learners:
-        for label, (cores, mib) in f.by_process.items():
+    for table in tables:
+        for label, (cores, mib) in table.items():
             entry = totals.setdefault(label, [0.0, 0.0])
-            entry[0] += cores / result.n
-            entry[1] += mib / result.n
-    print(f"  one learner's processes at N = {result.n} (mean):")
-    for label, (cores, mib) in sorted(totals.items(), key=lambda kv: -kv[1][0]):
-        print(f"    {cores:5.2f} cores {mib:6.0f} MiB  {label}")
+            entry[0] += cores / len(tables)
+            entry[1] += mib / len(tables)
+    return {label: (cores, mib) for label, (cores, mib) in totals.items()}
+
+
+def _print_table(title: str, table: dict[str, tuple[float, float]], digits: int) -> None:
+    print(title)
+    for label, (cores, mib) in sorted(table.items(), key=lambda kv: -kv[1][0]):
+        print(f"    {cores:{digits + 3}.{digits}f} cores {mib:6.0f} MiB  {label}")
     print(
-        f"    {sum(c for c, _ in totals.values()):5.2f} cores "
-        f"{sum(m for _, m in totals.values()):6.0f} MiB  all"
+        f"    {sum(c for c, _ in table.values()):{digits + 3}.{digits}f} cores "
+        f"{sum(m for _, m in table.values()):6.0f} MiB  all"
     )
+
+
+def print_processes(result: Round) -> None:
+    """Print where one learner's CPU and memory go (the mean over the round's learners), the
+    idle learners' apart."""
+    driving = mean_processes([f.by_process for f in result.learners])
+    _print_table(f"  one driving learner's processes at N = {result.n} (mean):", driving, 2)
+    if result.idle:
+        idle = mean_processes([u.by_process for u in result.idle])
+        _print_table(f"  one idle learner's processes ({len(result.idle)} idle, mean):", idle, 4)
+        beside = sum(c for label, (c, _) in idle.items() if TUTORIAL_NODE not in label)
+        verdict = "met" if beside <= IDLE_GOAL_CORES else "not met"
+        print(
+            f"    {beside:7.4f} cores beside {TUTORIAL_NODE} "
+            f"(goal <= {IDLE_GOAL_CORES:g}: {verdict})"
+        )
 
 
 def first_failing(facts: dict[str, object]) -> str:
@@ -216,6 +261,8 @@ def summary(rounds: list[Round]) -> dict[str, object]:
     def first(goal: str) -> int | None:
         return next((r.n for r in rounds if any(f.startswith(goal) for f in r.failures)), None)
 
+    idle = rounds[-1].idle
+
     return {
         "first_failing": {goal: first(goal) for goal in GOALS},
         "held": passed[-1].n if passed else 0,
@@ -233,6 +280,16 @@ def summary(rounds: list[Round]) -> dict[str, object]:
         "learners_per_gib": round(1024 / basis.pss_mib, 2),
         "host": f"{cores} cores ({platform.processor() or platform.machine()}), "
         f"{memory_gib:.1f} GiB",
+        "idle": {
+            "learners": len(idle),
+            "cpu_cores": round(statistics.mean(u.cpu_cores for u in idle), 4),
+            "cpu_cores_beside_tutorial": round(
+                statistics.mean(u.beside_tutorial for u in idle), 4
+            ),
+            "memory_mib": round(statistics.mean(u.pss_mib for u in idle)),
+        }
+        if idle
+        else None,
         "rounds": [
             {
                 "n": r.n,
@@ -267,6 +324,15 @@ def print_class(facts: dict[str, object], load_before: tuple[float, ...], took: 
     rounds = facts["rounds"]
     assert isinstance(rounds, list)
     print(f"  memory per learner: {memory_summary(rounds)}")
+    idle = facts.get("idle")
+    if isinstance(idle, dict):
+        beside = float(idle["cpu_cores_beside_tutorial"])
+        print(
+            f"  an idle learner ({idle['learners']} beside the drivers at N = {rounds[-1]['n']}): "
+            f"{idle['cpu_cores']} cores, {beside} beside {TUTORIAL_NODE} (goal <= "
+            f"{IDLE_GOAL_CORES:g}: {'met' if beside <= IDLE_GOAL_CORES else 'not met'}), "
+            f"{idle['memory_mib']} MiB PSS"
+        )
     print(
         f"  per learner at N = {facts['basis_n']}: {facts['cpu_cores_per_learner']} cores, "
         f"{facts['memory_mib_per_learner']} MiB PSS (alone: {facts['cpu_cores_alone']} cores, "

@@ -1,7 +1,7 @@
 """How many learners one host holds: N labs, each running lesson 7's drive at the same time.
 
 Run: .venv/bin/python -m bench.class_capacity [--max 16] [--window 30] [--gets 200]
-     [--keep-going] [--record]
+     [--idle N] [--keep-going] [--record]
 A learner is what a learner's server runs: a lab as `make lab` starts it (JupyterLab, the lab's
 machine service and ros2 daemon, the world: MuJoCo simulation and meshcat view) and a real
 kernel running lesson 7's cells (start(7), world, `%ros2 run parameter_tests param_vel`,
@@ -16,6 +16,10 @@ burst: N x 2 ms of CPU on 2 cores).
 Each round prints every learner's figures and one learner's processes (CPU cores, PSS MiB);
 the end says which goal fails first as learners are added, and from which N on memory per
 learner is within its goal (it falls as learners share the libraries).
+--idle N adds N idle learners beside the driving ones, from the first round on: lesson 7's
+first cells run, the velocity at 0, no 3D view watched, no cell running (a learner reading).
+Each round prints one idle learner's processes apart, and their cores beside the tutorial's
+own node (which ticks ten times a second by design) against the idle goal (<= 0.005 cores).
 The bench adds learners until a goal fails (--keep-going: until the real-time factor fails;
 at most --max), then stops everything it started, also on Ctrl-C or SIGTERM. A failed round
 is measured again (up to three times) when processes outside the bench used the CPU.
@@ -40,6 +44,7 @@ from bench._capacity_report import (
     RTF_GOAL,
     Figures,
     Round,
+    Usage,
     judge,
     print_class,
     print_processes,
@@ -62,6 +67,8 @@ SETUP = [
     "plot = lesson.speed_plot()",  # the live speed plot stays on (the p99 goal is with it)
     "print('viewer port', world.viewer.port)",
 ]
+# An idle learner: the same first cells (no plot), the robot left still (bench.idle_lab's lab).
+IDLE_SETUP = [*SETUP[:3], "%ros2 param set /param_vel_node velocity 0.0"]
 DRIVE = """\
 %ros2 param set /param_vel_node velocity 0.2
 lesson.drive_for(3.0)
@@ -192,8 +199,9 @@ class Views:
 
 
 # --- one round -----------------------------------------------------------------------------
-def add_learner(number: int, views: Views) -> Learner:
-    """Start a lab and a kernel, run lesson 7's first cells; return the learner."""
+def add_learner(number: int, views: Views | None) -> Learner:
+    """Start a lab and a kernel, run lesson 7's first cells; return the learner (a driving
+    one watches its 3D view; an idle one, `views` None, leaves the robot still)."""
     lab = start_lab()
     try:
         kernel = LabKernel(lab)
@@ -202,6 +210,10 @@ def add_learner(number: int, views: Views) -> Learner:
         raise
     learner = Learner(number, lab, kernel)
     try:
+        if views is None:
+            for cell in IDLE_SETUP:
+                kernel.collect(kernel.submit(cell), timeout=120.0)
+            return learner
         for cell in SETUP:
             printed = kernel.collect(kernel.submit(cell), timeout=120.0)
         learner.viewer_port = int(printed.split()[-1])
@@ -212,11 +224,34 @@ def add_learner(number: int, views: Views) -> Learner:
     return learner
 
 
+def _usage(
+    pids: list[int],
+    used: dict[int, float],
+    pss: dict[int, float],
+    labels: dict[int, str],
+    elapsed: float,
+) -> dict[str, tuple[float, float]]:
+    """Return cores and MiB by process label for one learner's processes."""
+    by_process: dict[str, tuple[float, float]] = {}
+    for pid in pids:
+        label = labels.get(pid, "gone")
+        cores, mib = by_process.get(label, (0.0, 0.0))
+        by_process[label] = (cores + used.get(pid, 0.0) / elapsed, mib + pss.get(pid, 0))
+    return by_process
+
+
 def drive_round(
-    learners: list[Learner], window_s: float, gets: int, *, in_step: bool = False
+    learners: list[Learner],
+    window_s: float,
+    gets: int,
+    *,
+    in_step: bool = False,
+    idle: list[Learner] | None = None,
 ) -> Round:
     """Let every learner drive at once; measure the common window; return the figures (each
-    learner's gets at its own random moments, or all learners' at the same instants)."""
+    learner's gets at its own random moments, or all learners' at the same instants; the
+    `idle` learners' usage apart)."""
+    idle = idle or []
     lead = 15.0 + 2.0 * len(learners)  # param set + drive_for(3.0) everywhere before t0
     t0 = time.time() + lead
     t1 = t0 + window_s
@@ -228,7 +263,7 @@ def drive_round(
     ]
     time.sleep(max(0.0, t0 - time.time()))
     own = os.getpid()
-    roots = {learner.number: tree_pids(learner.roots) for learner in learners}
+    roots = {learner.number: tree_pids(learner.roots) for learner in [*learners, *idle]}
     before = {n: _cpu_seconds(pids) for n, pids in roots.items()}
     labels = {pid: _label(pid) for pids in roots.values() for pid in pids}
     bench_before, busy_before = _cpu_seconds([own])[own], _busy_seconds()
@@ -236,7 +271,7 @@ def drive_round(
     started = time.monotonic()
     time.sleep(window_s / 2)
     pss = {n: _pss_mib(pids) for n, pids in roots.items()}
-    shm = {n: shm_mib(pids) for n, pids in roots.items()}
+    shm = {learner.number: shm_mib(roots[learner.number]) for learner in learners}
     mem_used = (psutil.virtual_memory().total - psutil.virtual_memory().available) / 2**20
     time.sleep(max(0.0, t1 - time.time()))
     elapsed = time.monotonic() - started
@@ -254,11 +289,7 @@ def drive_round(
         used = {pid: after[n][pid] - before[n][pid] for pid in after[n] if pid in before[n]}
         cpu = sum(used.values())
         learners_cpu += cpu
-        by_process: dict[str, tuple[float, float]] = {}
-        for pid in roots[n]:
-            label = labels.get(pid, "gone")
-            cores, mib = by_process.get(label, (0.0, 0.0))
-            by_process[label] = (cores + used.get(pid, 0.0) / elapsed, mib + pss[n].get(pid, 0))
+        by_process = _usage(roots[n], used, pss[n], labels, elapsed)
         views = learner.view_updates - views_before[n]
         figures.append(
             Figures(
@@ -273,8 +304,14 @@ def drive_round(
                 by_process=by_process,
             )
         )
+    idle_usage = []
+    for learner in idle:
+        n = learner.number
+        used = {pid: after[n][pid] - before[n][pid] for pid in after[n] if pid in before[n]}
+        learners_cpu += sum(used.values())
+        idle_usage.append(Usage(_usage(roots[n], used, pss[n], labels, elapsed)))
     others = busy - (learners_cpu + bench_cpu) / elapsed
-    result = Round(figures, elapsed, busy, others, load, mem_used)
+    result = Round(figures, elapsed, busy, others, load, mem_used, idle=idle_usage)
     result.failures = judge(figures)
     return result
 
@@ -319,6 +356,12 @@ def main() -> None:
         help="every learner's param gets at the same instants (a burst of N commands at once; "
         "by default each learner's come at its own random moments, as people type)",
     )
+    parser.add_argument(
+        "--idle",
+        type=int,
+        default=0,
+        help="idle learners beside the driving ones (lesson 7's first cells, the robot still)",
+    )
     parser.add_argument("--record", action="store_true", help="write deploy/capacity.yaml")
     parser.add_argument(
         "--keep-going",
@@ -343,16 +386,19 @@ def main() -> None:
     )
     print(f"param gets: {gets_timing(args.in_step)}", flush=True)
     learners: list[Learner] = []
+    idle: list[Learner] = []
     rounds: list[Round] = []
     views = Views()
     try:
+        while len(idle) < args.idle:
+            idle.append(add_learner(1000 + len(idle), None))
         for n in sizes(args.max):
             while len(learners) < n:
                 learners.append(add_learner(len(learners) + 1, views))
             attempts: list[Round] = []
             for attempt in range(1, ATTEMPTS + 1):
                 attempts.append(
-                    drive_round(learners, args.window, args.gets, in_step=args.in_step)
+                    drive_round(learners, args.window, args.gets, in_step=args.in_step, idle=idle)
                 )
                 print_round(attempts[-1])
                 if not attempts[-1].failures or attempts[-1].others_cores <= args.others:
@@ -368,7 +414,7 @@ def main() -> None:
                 break
     finally:
         views.stop()
-        for learner in reversed(learners):
+        for learner in reversed([*learners, *idle]):
             learner.stop()
     if not rounds:
         raise SystemExit("no round finished")

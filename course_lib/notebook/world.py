@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import collections
 import contextlib
+import math
 import os
 import threading
 import time
@@ -21,6 +22,11 @@ from ..sim.world.kinematics import Pose2D, yaw_from_quat
 from ..sim.world.samples import SAMPLES_TOPIC, RobotSample, unpack
 
 __all__ = ["OdomReading", "World"]
+
+# A reading received longer ago than this is old: a resting robot's samples come once a second
+# (sim.world.samples), so a reader that needs a recent one asks for it (FRESH_TOPIC), at
+# most this often while it waits. A paused world sends none: its latest reading is the answer.
+STALE_S = 0.25
 
 _worlds: dict[int, World] = {}
 _worlds_lock = threading.RLock()
@@ -75,9 +81,10 @@ class World:
         shared: bool = False,
     ) -> None:
         from geometry_msgs.msg import Twist
-        from std_msgs.msg import Float64MultiArray, UInt32
+        from std_msgs.msg import Empty, Float64MultiArray, UInt32
 
-        from ..sim.ros.topics import RESET_DONE_TOPIC, RESET_TOPIC, reset_done_qos
+        from ..session.quiet_events import quiet_publisher, quiet_subscription
+        from ..sim.ros.topics import FRESH_TOPIC, RESET_DONE_TOPIC, RESET_TOPIC, reset_done_qos
 
         self.session = session
         self.settings = settings
@@ -87,18 +94,34 @@ class World:
         self._latest: OdomReading | None = None
         self._recent: collections.deque[tuple[int, OdomReading]] = collections.deque(maxlen=100)
         self._received = 0  # readings so far: wait_for_odom looks at each new one
+        self._received_at = 0.0  # when the latest came (monotonic)
+        self._asked_at = -math.inf  # when this handle last asked for fresh samples
         self._cond = threading.Condition()
         self._listeners: list[Any] = []
         node = session.node
         # /odom's samples, a few to a message (sim.world.samples): a tenth of /odom's wake-ups
         self._sub = node.create_subscription(
-            Float64MultiArray, SAMPLES_TOPIC, self._on_samples, 10
+            Float64MultiArray,
+            SAMPLES_TOPIC,
+            self._on_samples,
+            10,
+            event_callbacks=quiet_subscription(),
         )
         # made on the first drive(): a kernel that only watches never counts as a driver
         self._cmd: Any = None
-        self._reset = node.create_publisher(UInt32, RESET_TOPIC, 10)
+        self._reset = node.create_publisher(
+            UInt32, RESET_TOPIC, 10, event_callbacks=quiet_publisher()
+        )
+        self._fresh = node.create_publisher(
+            Empty, FRESH_TOPIC, 10, event_callbacks=quiet_publisher()
+        )
+        self._empty = Empty()
         self._reset_sub = node.create_subscription(
-            UInt32, RESET_DONE_TOPIC, self._on_reset_done, reset_done_qos()
+            UInt32,
+            RESET_DONE_TOPIC,
+            self._on_reset_done,
+            reset_done_qos(),
+            event_callbacks=quiet_subscription(),
         )
         self._resets_done: set[int] = set()
         self._reset_count = 0
@@ -116,6 +139,7 @@ class World:
                 self._received += 1
                 self._recent.append((self._received, reading))
             self._latest = readings[-1]
+            self._received_at = time.monotonic()
             self._cond.notify_all()
         listeners = list(self._listeners)
         for reading in readings:
@@ -156,20 +180,30 @@ class World:
         The predicate runs without the world's lock: the session's ROS thread takes that lock
         for every sample, so a predicate that waits on ROS (a parameter get) must not hold it.
         """
-        deadline = time.monotonic() + timeout
+        started = time.monotonic()
+        deadline = started + timeout
         with self._cond:
-            latest, seen = self._latest, self._received
+            latest, seen, age = self._latest, self._received, started - self._received_at
+        matched = None
         if latest is not None and (predicate is None or predicate(latest)):
-            return latest
+            matched = latest  # the answer, unless a newer reading comes when asked
+        if matched is not None and age <= STALE_S:
+            return matched
         came = 0  # readings that arrived during the wait (the error tells none from no match)
         while True:
             with self._cond:
                 fresh = [(n, reading) for n, reading in self._recent if n > seen]
                 if not fresh:
-                    remaining = deadline - time.monotonic()
+                    now = time.monotonic()
+                    if matched is not None and now - started > STALE_S:
+                        return matched  # no newer one came when asked: a paused world's last
+                    remaining = deadline - now
                     if remaining <= 0:
                         raise self._no_match(timeout, came)
-                    self._cond.wait(min(remaining, 0.2))
+                    if now - max(self._received_at, self._asked_at) > STALE_S:
+                        self._asked_at = now
+                        self._fresh.publish(self._empty)  # a resting robot's: send them now
+                    self._cond.wait(min(remaining, STALE_S / 2))
                     continue
             for number, reading in fresh:
                 seen, came = number, came + 1

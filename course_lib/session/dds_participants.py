@@ -20,6 +20,7 @@ __all__ = [
     "endpoint_holders",
     "participant_prefix",
     "prefix_pid",
+    "prefix_runs",
     "present_participants",
     "read_bound_participants",
     "running_participants",
@@ -45,6 +46,17 @@ def endpoint_holders(endpoints: Iterable[Any]) -> dict[str, set[tuple[int, ...]]
 def prefix_pid(prefix: Sequence[int]) -> int:
     """Return the (low 16 bits of the) pid a Fast DDS GUID prefix names: bytes 4-5."""
     return prefix[4] | prefix[5] << 8
+
+
+def prefix_runs(
+    prefix: Sequence[int],
+    pid_limit: int,
+    running: Callable[[int], bool] = procfs.pid_alive,
+) -> bool:
+    """Return whether a running process may be the participant's: one of the pids below
+    `pid_limit` whose low 16 bits the prefix names runs (as `running_participants` decides,
+    without listing every process)."""
+    return any(running(pid) for pid in range(prefix_pid(prefix), pid_limit, 1 << 16))
 
 
 def present_participants(

@@ -25,6 +25,7 @@ from .dds_participants import (
     dead_participants,
     endpoint_holders,
     participant_prefix,
+    prefix_runs,
     read_bound_participants,
 )
 
@@ -77,7 +78,14 @@ class LiveGraphNode(Node):
             *super().get_subscriptions_info_by_topic(topic, mangled),
         ]
 
+    def _runs(self, prefix: Prefix) -> bool:
+        """Return whether the participant's process may run (False: it may have ended)."""
+        return prefix_runs(prefix, procfs.pid_max())
+
     def _alive(self, infos: list[TopicEndpointInfo]) -> list[TopicEndpointInfo]:
+        prefixes = {participant_prefix(info.endpoint_gid) for info in infos}
+        if all(self._runs(prefix) for prefix in prefixes):
+            return infos  # a participant whose process runs is never a dead one
         _holders, dead = self._liveness()
         if not dead:
             return infos
@@ -214,6 +222,22 @@ class LiveGraphNode(Node):
 
     def get_node_names_and_namespaces_with_enclaves(self) -> list[tuple[str, str, str]]:
         return self._live_names(super().get_node_names_and_namespaces_with_enclaves())
+
+    def listed_and_running(self, full_name: str) -> bool:
+        """Return True if the graph lists `full_name` and a process holding its parameter
+        service runs: the whole look (`get_node_names_and_namespaces`) would keep the name
+        then, and this costs one endpoint query. False says nothing: a node without
+        parameter services, or held by processes that have all ended."""
+        listed = super().get_node_names_and_namespaces()
+        if not any(_full_name(name, ns) == full_name for name, ns in listed):
+            return False
+        topic = f"rq{full_name}/get_parametersRequest"
+        holders = {
+            participant_prefix(info.endpoint_gid)
+            for info in super().get_subscriptions_info_by_topic(topic, True)
+            if _full_name(info.node_name, info.node_namespace) == full_name
+        }
+        return any(self._runs(prefix) for prefix in holders)
 
     def get_node_names(self) -> list[str]:
         return [name for name, _namespace in self.get_node_names_and_namespaces()]

@@ -36,6 +36,7 @@ __all__ = [
     "owner_uid",
     "parent_pid",
     "pid_alive",
+    "pid_max",
     "pid_namespace",
     "pids",
     "start_time",
@@ -135,6 +136,15 @@ def has_children(pid: int) -> bool:
 def pids() -> list[int]:
     """Return the pids of every process this PID namespace shows."""
     return [int(entry.name) for entry in PROC.iterdir() if entry.name.isdigit()]
+
+
+@functools.cache
+def pid_max() -> int:
+    """Return the largest pid this host hands out, plus one (/proc/sys/kernel/pid_max)."""
+    try:
+        return int((PROC / "sys" / "kernel" / "pid_max").read_text())
+    except (OSError, ValueError):
+        return 4_194_304  # Linux's ceiling on 64-bit machines
 
 
 @functools.cache

@@ -63,11 +63,17 @@ class ParameterEventsFeed:
         from rcl_interfaces.msg import ParameterEvent
         from rclpy.qos import qos_profile_parameter_events
 
+        from ...session.quiet_events import quiet_subscription
+
         self._listeners: list[Callable[[Any], None]] = [self._journal]
         self._lock = threading.Lock()
         self._session = session
         self._sub = session.node.create_subscription(
-            ParameterEvent, "/parameter_events", self._on_event, qos_profile_parameter_events
+            ParameterEvent,
+            "/parameter_events",
+            self._on_event,
+            qos_profile_parameter_events,
+            event_callbacks=quiet_subscription(),
         )
 
     def _on_event(self, msg: Any) -> None:

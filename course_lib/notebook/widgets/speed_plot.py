@@ -35,6 +35,8 @@ class SpeedPlot:
     def __init__(self, session: Any, *, node: str = "/param_vel_node", window: int = 3000) -> None:
         from std_msgs.msg import Float64MultiArray
 
+        from ...session.quiet_events import quiet_subscription
+
         self.session = session
         self.node = node  # only this node's velocity changes are marked
         self.samples: deque[tuple[float, float]] = deque(maxlen=window)
@@ -49,7 +51,11 @@ class SpeedPlot:
         self._image: Any = None
         self._thread: threading.Thread | None = None
         self._odom = session.node.create_subscription(
-            Float64MultiArray, SAMPLES_TOPIC, self._on_samples, SAMPLES_DEPTH
+            Float64MultiArray,
+            SAMPLES_TOPIC,
+            self._on_samples,
+            SAMPLES_DEPTH,
+            event_callbacks=quiet_subscription(),
         )
         self._stop_events = subscribe_parameter_events(session, self._on_event)
 

@@ -222,6 +222,7 @@ def _journal_parameter_events(node: Any, domain: int) -> Any:
     from rclpy.qos import qos_profile_parameter_events
 
     from ...core import param_journal
+    from ...session.quiet_events import quiet_subscription
     from ..values import event_record
 
     def journal(msg: Any) -> None:
@@ -230,7 +231,11 @@ def _journal_parameter_events(node: Any, domain: int) -> Any:
             param_journal.append(domain, record)
 
     return node.create_subscription(
-        ParameterEvent, "/parameter_events", journal, qos_profile_parameter_events
+        ParameterEvent,
+        "/parameter_events",
+        journal,
+        qos_profile_parameter_events,
+        event_callbacks=quiet_subscription(),
     )
 
 

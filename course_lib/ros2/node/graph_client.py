@@ -278,7 +278,12 @@ class GraphClient:
         their node names yet, up to INCOMPLETE_WAIT_S. (`clock` and `sleep`: as in
         `wait_settled`.)"""
 
+        hidden = _is_hidden_name(full_name.rsplit("/", 1)[-1])
+        quick = getattr(self.node, "listed_and_running", None)  # a LiveGraphNode's
+
         def found() -> bool:
+            if quick is not None and (include_hidden or not hidden) and quick(full_name):
+                return True  # listed once, its process runs: no search of the whole graph
             names = self.node_names(include_hidden=include_hidden)
             return full_name in {n.full_name for n in names}
 

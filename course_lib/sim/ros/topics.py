@@ -1,13 +1,17 @@
-"""The simulation's hidden reset topics (no ROS import: a kernel's world handle reads them).
+"""The simulation's hidden request topics (no ROS import: a kernel's world handle uses them).
 
 Hidden from `ros2 topic list` (a leading underscore): World.reset() sends a number on
-RESET_TOPIC and waits for the same number on RESET_DONE_TOPIC.
+RESET_TOPIC and waits for the same number on RESET_DONE_TOPIC. A reader that finds its
+latest sample old sends an empty message on FRESH_TOPIC: a robot at rest sends its samples
+once a second (sim.world.samples), and asked, sends those that wait at once and the next
+ones every BATCH_S for a while.
 """
 
 from typing import Any
 
-__all__ = ["RESET_DONE_TOPIC", "RESET_TOPIC", "reset_done_qos"]
+__all__ = ["FRESH_TOPIC", "RESET_DONE_TOPIC", "RESET_TOPIC", "reset_done_qos"]
 
+FRESH_TOPIC = "/_mujoco/fresh"  # std_msgs/Empty
 RESET_TOPIC = "/_mujoco/reset"
 RESET_DONE_TOPIC = "/_mujoco/reset_done"
 

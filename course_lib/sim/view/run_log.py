@@ -99,11 +99,19 @@ class RunLog(PoseLog):
     def __init__(self, session: Any, *, fps: int = 30, max_s: float = 300.0) -> None:
         from std_msgs.msg import Float64MultiArray
 
+        from ...session.quiet_events import quiet_subscription
+
         super().__init__(fps=fps, max_s=max_s)
         self.session = session
         node = session.node
         self._subs = [
-            node.create_subscription(Float64MultiArray, SAMPLES_TOPIC, self._on_samples, 20),
+            node.create_subscription(
+                Float64MultiArray,
+                SAMPLES_TOPIC,
+                self._on_samples,
+                20,
+                event_callbacks=quiet_subscription(),
+            ),
         ]
 
     def _on_samples(self, msg: Any) -> None:

@@ -25,8 +25,12 @@ class Pacer:
         """Forget the anchor (after a pause or a reset): the next call re-anchors."""
         self._anchor = None
 
-    def delay(self, sim_time: float, wall_time: float) -> float:
-        """Return how long to sleep before simulated `sim_time` is due; 0 if it already is."""
+    def delay(self, sim_time: float, wall_time: float, *, slack_s: float = 0.0) -> float:
+        """Return how long to sleep before simulated `sim_time` is due; 0 if it already is.
+
+        `slack_s`: a lag the caller chose (it slept through points it takes back to back
+        now), which does not count as falling behind.
+        """
         if self.real_time_factor <= 0:
             return 0.0
         if self._anchor is None:
@@ -34,7 +38,7 @@ class Pacer:
             return 0.0
         sim0, wall0 = self._anchor
         due = wall0 + (sim_time - sim0) / self.real_time_factor
-        if wall_time - due > self.max_lag_s:  # far behind (machine busy): do not race to catch up
+        if wall_time - due > self.max_lag_s + slack_s:  # far behind (machine busy): no race
             self._anchor = (sim_time, wall_time)
             return 0.0
         return max(0.0, due - wall_time)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from types import SimpleNamespace
 
-from course_lib.session.dds_participants import dead_participants, endpoint_holders
+from course_lib.session.dds_participants import dead_participants, endpoint_holders, prefix_runs
 
 
 def _prefix(pid: int) -> tuple[int, ...]:
@@ -65,3 +65,18 @@ def test_endpoint_holders_name_each_node_by_its_participants() -> None:
         "/param_vel_node": {_prefix(NODE), _prefix(KILLED)},
         "/robot/sim": {_prefix(CLIENT)},
     }
+
+
+def test_a_prefix_runs_if_a_process_with_its_low_pid_bits_runs() -> None:
+    """`prefix_runs` asks about the pids a prefix may name (its low 16 bits, below the
+    host's pid_max), as `running_participants` does from the list of every process."""
+    asked: list[int] = []
+
+    def running(pid: int) -> bool:
+        asked.append(pid)
+        return pid == NODE + 2 * 65536
+
+    assert prefix_runs(_prefix(NODE), 4 * 65536, running)
+    assert asked == [NODE, NODE + 65536, NODE + 2 * 65536]
+    assert not prefix_runs(_prefix(KILLED), 4 * 65536, running)
+    assert not prefix_runs(_prefix(NODE), NODE, running)  # no pid below pid_max has them

@@ -25,6 +25,7 @@ class _ArrivingGraph(GraphClient):
     """A warm client whose graph gains the node as the wait's deciding view is taken."""
 
     def __init__(self, arrives_in: str) -> None:  # no rclpy node: the graph is scripted
+        self.node = None  # no quick look (LiveGraphNode.listed_and_running): the views decide
         self.arrives_in = arrives_in
         self.arrived = False
         self.complete_calls = 0

@@ -68,6 +68,19 @@ def test_pacer_reanchors_instead_of_racing_after_a_stall() -> None:
     assert pacer.delay(0.04, 5.0) == pytest.approx(0.02)
 
 
+def test_pacer_counts_a_chosen_lag_as_no_stall() -> None:
+    """A resting world sleeps through up to a second of points and then takes them back to
+    back: that lag is the loop's choice (its slack), and re-anchoring on it would lose the
+    simulated time slept through (a resting lab's clock fell a second behind per doze)."""
+    pacer = Pacer(1.0, max_lag_s=0.25)
+    pacer.delay(0.0, 0.0)
+    assert pacer.delay(0.02, 1.0, slack_s=1.0) == 0.0  # 0.98 s behind, within the slack
+    assert pacer.delay(1.0, 1.0) == 0.0  # the anchor held: simulated 1.0 s is due at 1.0 s
+    assert pacer.delay(1.5, 1.0) == pytest.approx(0.5)
+    assert pacer.delay(1.52, 3.0, slack_s=1.0) == 0.0  # beyond lag and slack: re-anchor
+    assert pacer.delay(1.54, 3.0) == pytest.approx(0.02)
+
+
 def test_schedule_steps_to_each_due_stream() -> None:
     schedule = Schedule({"odom": 50.0, "scan": 5.0}, 0.002)
     assert schedule.advance(0) == ["odom", "scan"]
