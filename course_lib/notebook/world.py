@@ -18,8 +18,9 @@ from typing import Any, Protocol
 from ..config.simulation import SimulationSettings
 from ..core.errors import CourseError
 from ..processes.children import OutputLine
+from ..sim.view.samples_feed import samples_feed
 from ..sim.world.kinematics import Pose2D, yaw_from_quat
-from ..sim.world.samples import SAMPLES_TOPIC, RobotSample, unpack
+from ..sim.world.samples import RobotSample
 
 __all__ = ["OdomReading", "World"]
 
@@ -81,7 +82,7 @@ class World:
         shared: bool = False,
     ) -> None:
         from geometry_msgs.msg import Twist
-        from std_msgs.msg import Empty, Float64MultiArray, UInt32
+        from std_msgs.msg import Empty, UInt32
 
         from ..session.quiet_events import quiet_publisher, quiet_subscription
         from ..sim.ros.topics import FRESH_TOPIC, RESET_DONE_TOPIC, RESET_TOPIC, reset_done_qos
@@ -99,14 +100,10 @@ class World:
         self._cond = threading.Condition()
         self._listeners: list[Any] = []
         node = session.node
-        # /odom's samples, a few to a message (sim.world.samples): a tenth of /odom's wake-ups
-        self._sub = node.create_subscription(
-            Float64MultiArray,
-            SAMPLES_TOPIC,
-            self._on_samples,
-            10,
-            event_callbacks=quiet_subscription(),
-        )
+        # /odom's samples, a few to a message (sim.world.samples): a tenth of /odom's wake-ups,
+        # on the session's one subscription (the speed plot and the replay log read it too)
+        self._feed = samples_feed(session)
+        self._feed.add(self._on_samples)
         # made on the first drive(): a kernel that only watches never counts as a driver
         self._cmd: Any = None
         self._reset = node.create_publisher(
@@ -130,8 +127,8 @@ class World:
     def __repr__(self) -> str:
         return f"<World {'running' if self.alive else 'stopped'}>"
 
-    def _on_samples(self, msg: Any) -> None:
-        readings = [_reading(sample) for sample in unpack(msg.data)]
+    def _on_samples(self, samples: list[RobotSample]) -> None:
+        readings = [_reading(sample) for sample in samples]
         if not readings:
             return
         with self._cond:
@@ -357,15 +354,16 @@ class World:
         with _worlds_lock:
             if _worlds.get(id(self.session)) is self:
                 del _worlds[id(self.session)]
+        steps: list[tuple[Any, Any]] = [(self._feed.remove, self._on_samples)]
         if not self.session.closed:
             node = self.session.node
-            steps: list[tuple[Any, Any]] = [
-                (node.destroy_subscription, self._sub),
+            steps += [
+                (node.destroy_publisher, self._fresh),
                 (node.destroy_publisher, self._reset),
                 (node.destroy_subscription, self._reset_sub),
             ]
             if self._cmd is not None:
                 steps.append((node.destroy_publisher, self._cmd))
-            for destroy, entity in steps:  # each step on its own: one failure skips no other
-                with contextlib.suppress(Exception):  # the session may be closing concurrently
-                    destroy(entity)
+        for undo, entity in steps:  # each step on its own: one failure skips no other
+            with contextlib.suppress(Exception):  # the session may be closing concurrently
+                undo(entity)

@@ -14,7 +14,8 @@ import threading
 from collections import deque
 from typing import Any
 
-from ...sim.world.samples import SAMPLES_TOPIC, unpack
+from ...sim.view.samples_feed import SamplesFeed, samples_feed
+from ...sim.world.samples import RobotSample
 from ...viz.speed_svg import speed_svg
 from .events import changes_of, subscribe_parameter_events
 from .speed_summary import speed_summary
@@ -24,7 +25,6 @@ __all__ = ["REFRESH_S", "SpeedPlot"]
 _log = logging.getLogger(__name__)
 
 REFRESH_S = 1.0  # the live plot redraws at most this often, and only after new samples
-SAMPLES_DEPTH = 20  # 2 s of /odom's samples (a message per 0.1 s) wait while the kernel is busy
 _STILL_MPS = 1e-3  # samples of a robot standing still (speed ~0, unchanged) redraw nothing
 
 
@@ -33,10 +33,6 @@ class SpeedPlot:
     picture."""
 
     def __init__(self, session: Any, *, node: str = "/param_vel_node", window: int = 3000) -> None:
-        from std_msgs.msg import Float64MultiArray
-
-        from ...session.quiet_events import quiet_subscription
-
         self.session = session
         self.node = node  # only this node's velocity changes are marked
         self.samples: deque[tuple[float, float]] = deque(maxlen=window)
@@ -50,17 +46,12 @@ class SpeedPlot:
         self.redraws = 0  # live redraws so far
         self._image: Any = None
         self._thread: threading.Thread | None = None
-        self._odom = session.node.create_subscription(
-            Float64MultiArray,
-            SAMPLES_TOPIC,
-            self._on_samples,
-            SAMPLES_DEPTH,
-            event_callbacks=quiet_subscription(),
-        )
+        self._feed: SamplesFeed | None = samples_feed(session)
+        self._feed.add(self._on_samples)
         self._stop_events = subscribe_parameter_events(session, self._on_event)
 
-    def _on_samples(self, msg: Any) -> None:
-        for sample in unpack(msg.data):
+    def _on_samples(self, samples: list[RobotSample]) -> None:
+        for sample in samples:
             self._add(sample.time_s, sample.linear_mps)
 
     def _add(self, stamp: float, speed: float) -> None:
@@ -168,7 +159,7 @@ class SpeedPlot:
         if self._thread is not None:
             self._thread.join(timeout=2.0)
         self._stop_events()
-        if self._odom is not None and not self.session.closed:
-            self.session.node.destroy_subscription(self._odom)
-        self._odom = None
+        if self._feed is not None:
+            self._feed.remove(self._on_samples)
+        self._feed = None
         self._draw(final=True)

@@ -20,7 +20,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ..world.robot import BASE_HEIGHT_M, WHEEL_JOINTS
-from ..world.samples import SAMPLES_TOPIC, unpack
+from ..world.samples import RobotSample
+from .samples_feed import SamplesFeed, samples_feed
 
 if TYPE_CHECKING:  # a kernel that records a run never needs MuJoCo or meshcat until it saves
     import mujoco
@@ -97,35 +98,22 @@ class RunLog(PoseLog):
     """A PoseLog fed by a session's samples of /odom and the wheels (sim.world.samples)."""
 
     def __init__(self, session: Any, *, fps: int = 30, max_s: float = 300.0) -> None:
-        from std_msgs.msg import Float64MultiArray
-
-        from ...session.quiet_events import quiet_subscription
-
         super().__init__(fps=fps, max_s=max_s)
         self.session = session
-        node = session.node
-        self._subs = [
-            node.create_subscription(
-                Float64MultiArray,
-                SAMPLES_TOPIC,
-                self._on_samples,
-                20,
-                event_callbacks=quiet_subscription(),
-            ),
-        ]
+        self._feed: SamplesFeed | None = samples_feed(session)
+        self._feed.add(self._on_samples)
 
-    def _on_samples(self, msg: Any) -> None:
-        for s in unpack(msg.data):
+    def _on_samples(self, samples: list[RobotSample]) -> None:
+        for s in samples:
             pose = (s.x, s.y, BASE_HEIGHT_M, s.qw, s.qx, s.qy, s.qz)
             wheels = (s.wheel_left_rad, s.wheel_right_rad)
             self.add(PoseSample(s.time_s, pose, wheels, s.linear_mps))
 
     def close(self) -> None:
         """Stop listening (the session is closing, or a test is done); idempotent."""
-        if not self.session.closed:
-            for sub in self._subs:
-                self.session.node.destroy_subscription(sub)
-        self._subs = []
+        if self._feed is not None:
+            self._feed.remove(self._on_samples)
+        self._feed = None
 
 
 _logs: weakref.WeakKeyDictionary[Any, RunLog] = weakref.WeakKeyDictionary()

@@ -31,4 +31,5 @@ def test_a_failing_destroy_skips_no_other(
     assert world._cmd not in list(node.publishers)
     assert world._reset not in list(node.publishers)
     assert world._reset_sub not in list(node.subscriptions)
+    assert world._fresh not in list(node.publishers)
     assert not process.alive
