@@ -6,11 +6,12 @@ import contextlib
 import html
 import logging
 import threading
-import weakref
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
+
+from ...session.per_session import PerSession
 
 __all__ = [
     "EventsTable",
@@ -115,17 +116,8 @@ def sim_now(session: Any) -> float | None:
     return None if latest is None else round(latest.time_s, 3)
 
 
-_feeds: weakref.WeakKeyDictionary[Any, ParameterEventsFeed] = weakref.WeakKeyDictionary()
-_feeds_lock = threading.Lock()
-
-
-def parameter_events(session: Any) -> ParameterEventsFeed:
-    """Return `session`'s /parameter_events feed, subscribing the first time."""
-    with _feeds_lock:
-        feed = _feeds.get(session)
-        if feed is None:
-            feed = _feeds[session] = ParameterEventsFeed(session)
-        return feed
+# parameter_events(session): the session's /parameter_events feed, subscribing the first time
+parameter_events = PerSession(ParameterEventsFeed)
 
 
 def subscribe_parameter_events(

@@ -11,12 +11,12 @@ from __future__ import annotations
 import logging
 import threading
 import time
-import weakref
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 from ...core.errors import CourseError
+from ...session.per_session import PerSession
 from ..start_command import last_start_command
 
 __all__ = [
@@ -116,17 +116,7 @@ class GraphWatch:
         return stop
 
 
-_watches: weakref.WeakKeyDictionary[Any, GraphWatch] = weakref.WeakKeyDictionary()
-_watches_lock = threading.Lock()
-
-
-def graph_watch(session: Any) -> GraphWatch:
-    """Return `session`'s graph watch (made the first time)."""
-    with _watches_lock:
-        watch = _watches.get(session)
-        if watch is None:
-            watch = _watches[session] = GraphWatch(session)
-        return watch
+graph_watch = PerSession(GraphWatch)  # graph_watch(session): the session's one graph watch
 
 
 @dataclass(frozen=True)

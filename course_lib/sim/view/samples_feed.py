@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import logging
 import threading
-import weakref
 from collections.abc import Callable
 from typing import Any
 
+from ...session.per_session import PerSession
 from ..world.samples import SAMPLES_TOPIC, RobotSample, unpack
 
 __all__ = ["SAMPLES_DEPTH", "SamplesFeed", "samples_feed"]
@@ -79,14 +79,4 @@ class SamplesFeed:
                 _log.exception("a reader of the robot's samples failed")
 
 
-_feeds: weakref.WeakKeyDictionary[Any, SamplesFeed] = weakref.WeakKeyDictionary()
-_feeds_lock = threading.Lock()
-
-
-def samples_feed(session: Any) -> SamplesFeed:
-    """Return `session`'s samples feed (one per session)."""
-    with _feeds_lock:
-        feed = _feeds.get(session)
-        if feed is None:
-            feed = _feeds[session] = SamplesFeed(session)
-        return feed
+samples_feed = PerSession(SamplesFeed)  # samples_feed(session): the session's one feed
