@@ -7,7 +7,7 @@ simulation, which serves the 3D view, is a child of the course session, so it en
 from __future__ import annotations
 
 import collections
-import contextlib
+import logging
 import math
 import os
 import threading
@@ -29,6 +29,7 @@ __all__ = ["OdomReading", "World"]
 # most this often while it waits. A paused world sends none: its latest reading is the answer.
 STALE_S = 0.25
 
+_log = logging.getLogger(__name__)
 _worlds: dict[int, World] = {}
 _worlds_lock = threading.RLock()
 
@@ -199,6 +200,7 @@ class World:
                         raise self._no_match(timeout, came)
                     if now - max(self._received_at, self._asked_at) > STALE_S:
                         self._asked_at = now
+                        # a DDS write never waits on the ROS thread that takes this lock
                         self._fresh.publish(self._empty)  # a resting robot's: send them now
                     self._cond.wait(min(remaining, STALE_S / 2))
                     continue
@@ -365,5 +367,7 @@ class World:
             if self._cmd is not None:
                 steps.append((node.destroy_publisher, self._cmd))
         for undo, entity in steps:  # each step on its own: one failure skips no other
-            with contextlib.suppress(Exception):  # the session may be closing concurrently
+            try:
                 undo(entity)
+            except Exception:  # the session may be closing concurrently: said, not raised
+                _log.debug("a step of the world handle's tear-down failed", exc_info=True)

@@ -283,7 +283,7 @@ class GraphClient:
 
         def found() -> bool:
             if quick is not None and (include_hidden or not hidden) and quick(full_name):
-                return True  # listed once, its process runs: no search of the whole graph
+                return True  # listed, and its process runs: no search of the whole graph
             names = self.node_names(include_hidden=include_hidden)
             return full_name in {n.full_name for n in names}
 

@@ -246,7 +246,7 @@ class Bridge:
             else:
                 self.sim.reset()
                 self.pacer.restart()
-                self._rest_since, self._fresh_until = None, 0.0  # simulated time starts again
+                self._rest_since = None  # put back at its start pose: its rest starts anew
                 self._publish(["odom", "joint_states", "tf_odom", "tf_wheels"])
                 self._flush_samples()  # the start pose reaches the readers before the reply
                 self._reset_done.publish(UInt32(data=value))
@@ -284,7 +284,8 @@ class Bridge:
                 break
             if self._lagging:  # after a doze: inputs wait until the points before them are done
                 self._lagging = not self.paused and self._overdue(self.sim.time + wake_period / 2)
-                self._doze_slack = self._doze_slack if self._lagging else 0.0
+                if not self._lagging:
+                    self._doze_slack = 0.0  # caught up: a lag from now on is a stall
             if not self._lagging:
                 self._apply_inputs()
             if self.paused:

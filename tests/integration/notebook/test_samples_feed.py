@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import logging
 import time
-from collections.abc import Iterator
 from typing import Any
 
 import pytest
@@ -20,13 +19,6 @@ from course_lib.sim.view.samples_feed import samples_feed
 from course_lib.sim.world.samples import FIELDS, SAMPLES_TOPIC
 
 pytestmark = pytest.mark.ros
-
-
-@pytest.fixture
-def session() -> Iterator[Session]:
-    own = Session()
-    yield own
-    own.close()
 
 
 def _subscriptions(session: Session) -> int:

@@ -144,3 +144,22 @@ def test_a_command_wakes_a_resting_robot_and_no_sample_is_lost(
         assert any(s.time_s >= moving.time_s for s in heard)
     finally:
         world.drive(0.0, 0.0)
+
+
+def test_a_notebook_opened_on_a_resting_world_reads_it_at_once(
+    session: Session, world: World
+) -> None:
+    """A notebook opened (or its kernel restarted) while the robot rests makes a new handle
+    on the running world: its first reading comes when it asks, not after a rest batch (1 s
+    of samples the simulation only starts gathering once the new reader subscribes)."""
+    _rested(world)
+    world.detach()  # the first notebook's handle lets go; the world runs on, nobody reads
+    time.sleep(1.0)  # the learner reads before opening the next notebook
+    again = World(session, world.settings, world.process)
+    try:
+        asked = time.monotonic()
+        again.odom()
+        took = time.monotonic() - asked
+        assert took < 0.6, f"the new handle's first reading took {took:.2f} s"
+    finally:
+        again.detach()
