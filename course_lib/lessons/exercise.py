@@ -36,6 +36,7 @@ MOVED_M = 0.02  # farther than this from the start: the robot moved
 MOVING_MPS = 0.003  # slower than this: the robot stands still
 REST_S = 0.3  # simulated seconds standing still that end a trip
 START_GRACE_S = 3.0  # simulated seconds the check gives a robot that has not moved yet
+START_GRACE_WALL_S = 2.0  # ... and wall seconds at least (a world faster than real time)
 
 
 class TripWatch:
@@ -188,13 +189,21 @@ class TravelExercise:
             f"{bound_s:g} s of simulated time) ...",
             flush=True,
         )
-        begin = watch.latest.time_s
+        # The world's time now, not the watch's last reading: a resting robot's readings come
+        # a second of simulated time to a message, and a stale start would cut the grace short.
+        begin = max(watch.latest.time_s, watch.world.odom().time_s)
+        wall_begin = time.monotonic()
 
         def certain() -> bool:
             now = watch.latest.time_s
             if now >= begin + bound_s:
                 return True
-            return watch.at_rest() if watch.moved else now >= begin + START_GRACE_S
+            if watch.moved:
+                return watch.at_rest()
+            # a world faster than real time on a busy host: the node's first command may take
+            # longer than the grace in simulated time to reach it, so wait a wall floor too
+            waited_wall = time.monotonic() - wall_begin >= START_GRACE_WALL_S
+            return now >= begin + START_GRACE_S and waited_wall
 
         watch.wait(certain, timeout=3 * bound_s + 30.0)
         return watch.moved and watch.at_rest() and not watch.passed
