@@ -13,6 +13,7 @@ import statistics
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from pathlib import Path
+from typing import Any
 
 import psutil
 
@@ -73,6 +74,7 @@ class Round:
     mem_used_mib: float
     failures: list[str] = field(default_factory=list)
     idle: list[Usage] = field(default_factory=list)  # the idle learners beside the drivers
+    hub: Usage | None = None  # the class hub's own processes (bench.hub_class)
 
     @property
     def n(self) -> int:
@@ -189,6 +191,10 @@ def print_processes(result: Round) -> None:
             f"    {beside:7.4f} cores beside {TUTORIAL_NODE} "
             f"(goal <= {IDLE_GOAL_CORES:g}: {verdict})"
         )
+    if result.hub is not None:
+        _print_table(f"  the hub's own processes at N = {result.n}:", result.hub.by_process, 3)
+        share = result.hub.cpu_cores / result.n
+        print(f"    {share:.4f} cores and {result.hub.pss_mib / result.n:.1f} MiB per learner")
 
 
 def first_failing(facts: dict[str, object]) -> str:
@@ -352,11 +358,9 @@ def print_class(facts: dict[str, object], load_before: tuple[float, ...], took: 
 
 
 def record(facts: dict[str, object], load_before: tuple[float, ...], gets: str) -> None:
-    """Write deploy/capacity.yaml from this run's figures."""
-    import yaml
-
+    """Write deploy/capacity.yaml from this run's figures (its `hub` section kept)."""
     cpu = max(float(facts["cpu_cores_alone"]), float(facts["cpu_cores_per_learner"]))  # type: ignore[arg-type]
-    data = {
+    data: dict[str, Any] = {
         "measured": {
             "date": f"{datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC",
             "host": facts["host"],
@@ -379,11 +383,40 @@ def record(facts: dict[str, object], load_before: tuple[float, ...], gets: str) 
             "learners_per_core_realtime": facts["learners_per_core_realtime"],
             "learners_per_gib": facts["learners_per_gib"],
         },
-        "kubernetes": requests(
-            held_cores(cpu, os.cpu_count() or 1, int(facts["held"])),  # type: ignore[call-overload]
-            float(facts["memory_mib_alone"]),  # type: ignore[arg-type]
-        ),
     }
+    hub = _recorded().get("hub")
+    if hub is not None:
+        data["hub"] = hub  # bench.hub_class's figures stay until it records again
+    _write_record(data)
+
+
+def _recorded() -> dict[str, Any]:
+    """Return deploy/capacity.yaml as it is (empty if there is none)."""
+    import yaml
+
+    return dict(yaml.safe_load(RECORD.read_text()) or {}) if RECORD.exists() else {}
+
+
+def pod_memory_mib(record: dict[str, Any]) -> float:
+    """Return the memory one learner's pod needs alone: the larger of a lab's learner and a
+    hub's (a pod runs the hub's single-user server, `course_lib hub-lab`) (pure)."""
+    lab = float(record["per_learner"]["memory_mib_alone"])
+    hub = record.get("hub") or {}
+    return max(lab, float(hub.get("learner_memory_mib_alone", 0)))
+
+
+def _write_record(data: dict[str, Any]) -> None:
+    """Write deploy/capacity.yaml: `data` with the Kubernetes requests that follow from it."""
+    import yaml
+
+    measured, per = data["measured"], data["per_learner"]
+    cores = int(str(measured["host"]).split()[0])
+    data["kubernetes"] = requests(
+        held_cores(float(per["cpu_cores"]), cores, int(measured["learners_held"])),
+        pod_memory_mib(data),
+    )
+    if "hub" in data:  # after `kubernetes`, as the file has always been read
+        data["hub"] = data.pop("hub")
     RECORD.parent.mkdir(exist_ok=True)
     RECORD.write_text(
         "# Written by `python -m bench.class_capacity --record`: what one learner costs.\n"
@@ -394,7 +427,49 @@ def record(facts: dict[str, object], load_before: tuple[float, ...], gets: str) 
         "# memory_mib_shared: PSS per learner at that N (libraries shared across learners).\n"
         "# kubernetes: what deploy/kubernetes/values.yaml must request (requests() of\n"
         "# held_cores() in bench/_capacity_report.py: never more learners per core than held\n"
-        "# every goal; tests/unit/repo/deploy/test_kubernetes_files.py checks).\n"
+        "# every goal; tests/unit/repo/deploy/test_kubernetes_files.py checks), its memory\n"
+        "# the larger of memory_mib_alone and hub.learner_memory_mib_alone (pod_memory_mib).\n"
+        "# hub: written by `python -m bench.hub_class --record` (a real class hub, root):\n"
+        "# a learner through the hub, and the hub's own processes at hub.learners.\n"
         + yaml.safe_dump(data, sort_keys=False)
     )
     print(f"\nwrote {RECORD.relative_to(REPO)}")
+
+
+def hub_summary(rounds: list[Round], *, walled: bool) -> dict[str, Any]:
+    """Return bench.hub_class's figures: a learner through the hub alone (the first round)
+    and in the class (the last), and the hub's own processes in the class (pure)."""
+    alone, last = rounds[0], rounds[-1]
+    own = last.hub or Usage()
+    return {
+        "date": f"{datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC",
+        "by": "python -m bench.hub_class --record",
+        "domain_wall": walled,
+        "learners": last.n,
+        "learner_memory_mib_alone": round(alone.pss_mib),
+        "learner_memory_mib_shared": round(last.pss_mib),
+        "learner_cpu_cores": round(last.cpu_cores, 3),
+        "rtf_min": round(last.rtf_min, 3),
+        "get_median_ms": round(statistics.median(last.gets_ms), 1),
+        "get_p99_ms": round(percentile(last.gets_ms, 0.99), 1),
+        "own": {
+            "cpu_cores": round(own.cpu_cores, 3),
+            "memory_mib": round(own.pss_mib),
+            "cpu_cores_per_learner": round(own.cpu_cores / last.n, 4),
+            "memory_mib_per_learner": round(own.pss_mib / last.n, 1),
+            "processes": {
+                label: {"cpu_cores": round(cores, 3), "memory_mib": round(mib)}
+                for label, (cores, mib) in sorted(own.by_process.items())
+            },
+        },
+    }
+
+
+def record_hub(facts: dict[str, Any]) -> None:
+    """Write bench.hub_class's figures into deploy/capacity.yaml (its `hub` section), and the
+    Kubernetes requests that follow."""
+    data = _recorded()
+    if "per_learner" not in data:
+        raise SystemExit(f"{RECORD} has no class figures: run bench.class_capacity --record")
+    data["hub"] = facts
+    _write_record(data)

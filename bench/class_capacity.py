@@ -37,6 +37,7 @@ import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import psutil
 
@@ -56,6 +57,7 @@ from bench._labs import Lab, LabKernel, start_lab, tree_pids
 from course_lib.core.host.procfs import environ as process_environ
 from course_lib.processes.orphans import NAME_ENV
 
+HUB = -1  # the hub's own processes, measured beside the learners' (bench.hub_class)
 OTHERS_LIMIT = 0.25  # cores used outside the bench that make a failed round suspect
 ATTEMPTS = 3
 
@@ -94,6 +96,11 @@ class Learner:
     def roots(self) -> list[int]:
         return [self.lab.pid, self.kernel.pid]
 
+    def view_request(self) -> str:
+        """Return the address of the 3D view's websocket, through the lab's proxy."""
+        lab = self.lab
+        return f"ws://127.0.0.1:{lab.port}/proxy/{self.viewer_port}/?token={lab.token}"
+
     def stop(self) -> None:
         try:
             self.kernel.shutdown()
@@ -131,7 +138,7 @@ def _label(pid: int) -> str:
         command = " ".join(psutil.Process(pid).cmdline())
     except psutil.NoSuchProcess:
         return "gone"
-    if "-m course_lib lab" in command:
+    if "-m course_lib lab" in command or "-m course_lib hub-lab" in command:
         return "lab (machine service)"
     if "kernel_launcher" in command:  # ipykernel_launcher, the course's kernel_launcher
         return "kernel"
@@ -174,16 +181,15 @@ class Views:
         self.thread.start()
         self.tasks: list[object] = []
 
-    def watch(self, learner: Learner) -> None:
+    def watch(self, learner: Any) -> None:
+        """Count `learner`'s view updates (anything with `view_request()`, `view_updates`)."""
         future = asyncio.run_coroutine_threadsafe(self._count(learner), self.loop)
         self.tasks.append(future)
 
-    async def _count(self, learner: Learner) -> None:
+    async def _count(self, learner: Any) -> None:
         import tornado.websocket
 
-        lab = learner.lab
-        url = f"ws://127.0.0.1:{lab.port}/proxy/{learner.viewer_port}/?token={lab.token}"
-        connection = await tornado.websocket.websocket_connect(url)
+        connection = await tornado.websocket.websocket_connect(learner.view_request())
         while True:
             message = await connection.read_message()
             if message is None:
@@ -241,17 +247,19 @@ def _usage(
 
 
 def drive_round(
-    learners: list[Learner],
+    learners: list[Any],
     window_s: float,
     gets: int,
     *,
     in_step: bool = False,
     idle: list[Learner] | None = None,
+    hub: dict[int, str] | None = None,
 ) -> Round:
     """Let every learner drive at once; measure the common window; return the figures (each
     learner's gets at its own random moments, or all learners' at the same instants; the
-    `idle` learners' usage apart)."""
+    `idle` learners' usage apart; the `hub`'s processes, pid to label, apart too)."""
     idle = idle or []
+    hub = hub or {}
     lead = 15.0 + 2.0 * len(learners)  # param set + drive_for(3.0) everywhere before t0
     t0 = time.time() + lead
     t1 = t0 + window_s
@@ -264,8 +272,9 @@ def drive_round(
     time.sleep(max(0.0, t0 - time.time()))
     own = os.getpid()
     roots = {learner.number: tree_pids(learner.roots) for learner in [*learners, *idle]}
+    roots[HUB] = list(hub)
     before = {n: _cpu_seconds(pids) for n, pids in roots.items()}
-    labels = {pid: _label(pid) for pids in roots.values() for pid in pids}
+    labels = {pid: hub.get(pid) or _label(pid) for pids in roots.values() for pid in pids}
     bench_before, busy_before = _cpu_seconds([own])[own], _busy_seconds()
     views_before = {learner.number: learner.view_updates for learner in learners}
     started = time.monotonic()
@@ -310,8 +319,11 @@ def drive_round(
         used = {pid: after[n][pid] - before[n][pid] for pid in after[n] if pid in before[n]}
         learners_cpu += sum(used.values())
         idle_usage.append(Usage(_usage(roots[n], used, pss[n], labels, elapsed)))
+    used = {pid: after[HUB][pid] - before[HUB][pid] for pid in after[HUB] if pid in before[HUB]}
+    learners_cpu += sum(used.values())
+    hub_usage = Usage(_usage(roots[HUB], used, pss[HUB], labels, elapsed)) if hub else None
     others = busy - (learners_cpu + bench_cpu) / elapsed
-    result = Round(figures, elapsed, busy, others, load, mem_used, idle=idle_usage)
+    result = Round(figures, elapsed, busy, others, load, mem_used, idle=idle_usage, hub=hub_usage)
     result.failures = judge(figures)
     return result
 

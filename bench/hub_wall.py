@@ -13,130 +13,49 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import hashlib
 import os
-import pwd
-import re
-import signal
-import socket
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
 import psutil
-import requests
 
-from course_lib.core.paths import REPO_ROOT
+from bench._hub import (
+    ADMIN,
+    account_pids,
+    default_environment,
+    remove_account,
+    running_hub,
+    sign_in,
+)
 from course_lib.hub.guard.wall import wall_problem
-from course_lib.hub.launcher import NO_WALL_ENV
-
-_UP = "The class hub is up"
-ADMIN = "r2pb-admin"
-
-
-def _free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
-
-
-def _default_environment() -> Path:
-    """The learners' environment the tests build (tests/browser/class_hub.py), if any."""
-    digest = hashlib.sha1(str(REPO_ROOT).encode()).hexdigest()[:10]
-    return Path(tempfile.gettempdir()) / f"ros2-course-hub-env-{digest}"
-
-
-def _pids_of(name: str) -> list[psutil.Process]:
-    uid = pwd.getpwnam(name).pw_uid
-    return [p for p in psutil.process_iter(["uids"]) if p.info["uids"].real == uid]
 
 
 def _memory_mib(name: str) -> tuple[float, float]:
     rss = pss = 0
-    for process in _pids_of(name):
+    for process in account_pids(name):
         with contextlib.suppress(psutil.Error):
             full = process.memory_full_info()
             rss, pss = rss + full.rss, pss + full.pss
     return rss / 2**20, pss / 2**20
 
 
-def _remove(name: str) -> None:
-    with contextlib.suppress(KeyError):
-        for process in _pids_of(name):
-            with contextlib.suppress(psutil.Error):
-                process.kill()
-        subprocess.run(["userdel", "--remove", name], check=False, capture_output=True)
-
-
-def _sign_in(url: str, name: str, password: str, timeout: float = 240.0) -> float:
-    """Sign in; return the seconds until the learner's server answers through the hub."""
-    session = requests.Session()
-    page = session.get(f"{url}/hub/login", timeout=30)
-    xsrf = re.search(r'name="_xsrf"\s+value="([^"]+)"', page.text)
-    form = {"username": name, "password": password, **({"_xsrf": xsrf[1]} if xsrf else {})}
-    started = time.monotonic()
-    session.post(f"{url}/hub/login", data=form, timeout=60)
-    while time.monotonic() - started < timeout:
-        reply = session.get(f"{url}/user/{name}/lab", timeout=60)
-        if reply.status_code == 200 and f"/user/{name}/lab" in reply.url:
-            return time.monotonic() - started
-        time.sleep(0.2)
-    raise RuntimeError(f"{name}'s server did not answer within {timeout:.0f} s")
-
-
 def _one_hub(learners: list[str], environment: Path, folder: Path, wall: bool) -> dict:
-    port = _free_port()
-    config = folder / f"hub-{'wall' if wall else 'nowall'}.yaml"
-    config.write_text(
-        f"learners: [{', '.join(learners)}]\nadmins: [{ADMIN}]\nport: {port}\n"
-        f"environment: {environment}\nstate: {folder / ('state-' + str(wall))}\nidle_minutes: 0\n",
-        encoding="utf-8",
-    )
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("ROS_", "COURSE_"))}
-    if not wall:
-        env[NO_WALL_ENV] = "1"
-    argv = [sys.executable, "-m", "course_lib", "hub", "--config", str(config)]
-    started = time.monotonic()
-    hub = subprocess.Popen(
-        argv, cwd=REPO_ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True
-    )
-    assert hub.stdout is not None
-    log = []
-    try:
-        for line in hub.stdout:
-            log.append(line)
-            if _UP in line:
-                break
-        else:
-            raise RuntimeError("the hub did not start:\n" + "".join(log[-40:]))
-        up = time.monotonic() - started
-        walled = any("The domain wall is on" in line for line in log)
-        passwords = dict(
-            line.split(" ", 1)
-            for line in (folder / f"state-{wall}" / "passwords.txt").read_text().splitlines()
-        )
+    with running_hub(learners, environment, folder, wall=wall) as hub:
         starts, memory = [], []
         for name in learners:
-            starts.append(_sign_in(f"http://127.0.0.1:{port}", name, passwords[name].strip()))
+            starts.append(sign_in(hub.url, name, hub.passwords[name]))
             time.sleep(3.0)  # the lab settles: its daemon and machine service are up
             memory.append(_memory_mib(name))
-        return {"up": up, "walled": walled, "starts": starts, "memory": memory}
-    finally:
-        hub.send_signal(signal.SIGINT)
-        try:
-            hub.wait(120)
-        except subprocess.TimeoutExpired:
-            hub.kill()
-            hub.wait()
+        return {"up": hub.up_s, "walled": hub.walled, "starts": starts, "memory": memory}
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--learners", type=int, default=2)
-    parser.add_argument("--environment", type=Path, default=_default_environment())
+    parser.add_argument("--environment", type=Path, default=default_environment())
     args = parser.parse_args()
     if os.geteuid() != 0:
         print("hub_wall: skipped (a class hub needs root and creates accounts)")
@@ -149,9 +68,7 @@ def main() -> int:
     with tempfile.TemporaryDirectory(prefix="bench-hub-wall-") as tmp:
         Path(tmp).chmod(0o711)  # the progress service's own account enters its state folder
         try:
-            for wall in (False, True):
-                for name in (*learners, ADMIN):  # each hub creates its accounts afresh
-                    _remove(name)
+            for wall in (False, True):  # each hub creates its accounts afresh
                 result = _one_hub(learners, args.environment, Path(tmp), wall)
                 label = "with the wall   " if result["walled"] else "without the wall"
                 starts = result["starts"]
@@ -166,7 +83,7 @@ def main() -> int:
                 )
         finally:
             for name in (*learners, ADMIN):
-                _remove(name)
+                remove_account(name)
     return 0
 
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+import pytest
+
 from bench._capacity_kernel import get_moments, real_time_factor
 from bench._capacity_report import (
     Figures,
@@ -116,3 +118,59 @@ def test_the_first_goal_to_fail_is_one_that_fails_as_learners_are_added() -> Non
     assert first_failing({"first_failing": none, "rounds": rounds}) == "none up to N = 8"
     p99 = {**none, "param get p99": 8}
     assert first_failing({"first_failing": p99, "rounds": rounds}) == "param get p99 at N = 8"
+
+
+def test_the_hubs_own_processes_are_printed_apart_with_their_share_per_learner(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    from bench._capacity_report import Round, Usage, print_processes
+
+    hub = Usage(
+        {"hub (JupyterHub)": (0.08, 90.0), "proxy (configurable-http-proxy)": (0.08, 70.0)}
+    )
+    result = Round([_figures(), _figures()], 30.0, 1.5, 0.0, (1.0, 1.0, 1.0), 0.0, hub=hub)
+    print_processes(result)
+    said = capsys.readouterr().out
+    assert "the hub's own processes at N = 2:" in said
+    assert "0.080 cores     90 MiB  hub (JupyterHub)" in said
+    assert "0.0800 cores and 80.0 MiB per learner" in said
+    print_processes(Round([_figures()], 30.0, 1.5, 0.0, (1.0, 1.0, 1.0), 0.0))
+    assert "hub" not in capsys.readouterr().out  # a bench without a hub prints no hub table
+
+
+def test_a_hub_process_is_named_from_its_command_line() -> None:
+    from bench.hub_class import _hub_label
+
+    assert _hub_label("node /env/proxy/node_modules/.bin/configurable-http-proxy --ip") == (
+        "proxy (configurable-http-proxy)"
+    )
+    assert _hub_label("/usr/bin/python3.11 -m jupyterhub -f cfg.py") == "hub (JupyterHub)"
+    assert _hub_label("/venv/bin/python -m course_lib hub --config x.yaml") == (
+        "gate (the hub launcher: relays every connection)"
+    )
+
+
+def test_a_pod_gets_the_memory_of_the_larger_learner_alone_a_labs_or_a_hubs() -> None:
+    from bench._capacity_report import pod_memory_mib
+
+    lab_only = {"per_learner": {"memory_mib_alone": 292}}
+    assert pod_memory_mib(lab_only) == 292.0
+    hub_larger = {**lab_only, "hub": {"learner_memory_mib_alone": 330}}
+    assert pod_memory_mib(hub_larger) == 330.0  # the pod runs the hub's single-user server
+    assert pod_memory_mib({**lab_only, "hub": {"learner_memory_mib_alone": 250}}) == 292.0
+
+
+def test_the_hub_summary_takes_the_alone_round_first_and_the_hubs_own_cost_last() -> None:
+    from bench._capacity_report import Round, Usage, hub_summary
+
+    def one(n: int, mib: float, hub: Usage) -> Round:
+        figures = [Figures(1.0, [5.0] * 10, 0.2, 0.0, 0.1, mib) for _ in range(n)]
+        return Round(figures, 30.0, 1.0, 0.0, (1.0, 1.0, 1.0), 0.0, hub=hub)
+
+    own = Usage({"proxy": (0.032, 56.0), "hub": (0.004, 94.0)})
+    facts = hub_summary([one(1, 330.0, Usage()), one(16, 274.0, own)], walled=True)
+    assert facts["learners"] == 16 and facts["domain_wall"] is True
+    assert facts["learner_memory_mib_alone"] == 330 and facts["learner_memory_mib_shared"] == 274
+    assert facts["own"]["cpu_cores"] == 0.036 and facts["own"]["memory_mib"] == 150
+    assert facts["own"]["cpu_cores_per_learner"] == 0.0023
+    assert facts["own"]["processes"]["proxy"] == {"cpu_cores": 0.032, "memory_mib": 56}

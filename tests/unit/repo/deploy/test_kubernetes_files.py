@@ -350,14 +350,14 @@ def host_cores(host: str) -> int:
 
 
 def test_requests_are_the_measured_figures(values, capacity) -> None:
-    from bench._capacity_report import held_cores, requests
+    from bench._capacity_report import held_cores, pod_memory_mib, requests
 
     kube = capacity["kubernetes"]
     per = capacity["per_learner"]
     measured = capacity["measured"]
     cores, held = host_cores(measured["host"]), measured["learners_held"]
     cpu = held_cores(per["cpu_cores"], cores, held)
-    assert kube == requests(cpu, per["memory_mib_alone"])
+    assert kube == requests(cpu, pod_memory_mib(capacity))  # a lab's or a hub's learner
     single = values["singleuser"]
     assert single["cpu"]["guarantee"] == kube["guarantee"]["cpu"] >= per["cpu_cores"]
     # Kubernetes packs at most 1/guarantee learners per core: never more than held every goal
@@ -366,6 +366,8 @@ def test_requests_are_the_measured_figures(values, capacity) -> None:
     assert single["cpu"]["limit"] == kube["limit"]["cpu"]
     assert single["memory"]["guarantee"] == kube["guarantee"]["memory"]
     assert mib(single["memory"]["guarantee"]) >= per["memory_mib_alone"]
+    hub = capacity.get("hub") or {}
+    assert mib(single["memory"]["guarantee"]) >= hub.get("learner_memory_mib_alone", 0)
     assert single["memory"]["limit"] == kube["limit"]["memory"]
     assert capacity["measured"]["date"] and capacity["measured"]["host"]
 
