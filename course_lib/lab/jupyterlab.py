@@ -17,7 +17,6 @@ from ..processes.children import ChildProcess, spawn
 from ..processes.domain import lease_domain
 from ..processes.lab_markers import lab_clone_marker, lab_marker, lab_start_marker
 from ..processes.shm_segments import sweep_stale_segments
-from ..ros2 import start_daemon
 from ..session.session import session_env
 from .leftovers import clean_up_killed_labs, workspaces_dir
 from .protocol import SOCKET_ENV
@@ -102,13 +101,14 @@ def _terminal_settings() -> str:
 
 def _start_machine(env: dict[str, str], cwd: Path) -> Any:
     """Start the lab's machine service: it owns the world every notebook of the lab shares."""
+    from .daemon_keeper import DaemonKeeper
     from .service import MachineService
 
     def spawn_in_lab(argv: Sequence[str], *, name: str) -> ChildProcess:
         return spawn(argv, name=name, env=env, cwd=cwd)
 
     path = runtime_dir() / f"lab-{os.getpid()}.sock"
-    return MachineService(path, spawn_in_lab).start()
+    return MachineService(path, spawn_in_lab, DaemonKeeper(spawn_in_lab, env)).start()
 
 
 def run_lab(
@@ -119,7 +119,8 @@ def run_lab(
     name: str = "jupyterlab",
     restart_killed: bool = True,
 ) -> int:
-    """Start the ros2 daemon and JupyterLab in a leased domain; stop both on Ctrl-C.
+    """Start JupyterLab in a leased domain (its ros2 daemon with its first terminal, see
+    lab.daemon_keeper); stop them on Ctrl-C.
 
     `server_argv` builds the Jupyter server's command line from the extra options (a hub's
     learner runs jupyterhub-singleuser instead of jupyter lab), run in `cwd`: the folder it
@@ -146,14 +147,12 @@ def run_lab(
         f"ROS 2 course: ROS_DOMAIN_ID={lease.domain_id} for this JupyterLab and its terminals.",
         flush=True,
     )
-    children: list[ChildProcess] = [start_daemon(env)]
     signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop cleanly on SIGTERM too
     # A workspace folder of its own: lesson 1 opens without the tabs of earlier labs or tests.
     workspaces = workspaces_dir(os.getpid())
     workspaces.mkdir(mode=0o700, exist_ok=True)
     argv = server_argv([f"--LabApp.workspaces_dir={workspaces}", *extra])
     lab = spawn(argv, name=name, env=env, cwd=cwd, capture=False)
-    children.append(lab)
     restarts = ServerRestarts(env)
     try:
         while True:
@@ -162,14 +161,12 @@ def run_lab(
             if again is None:
                 break
             lab = spawn(argv_with(argv, again), name=name, env=env, cwd=cwd, capture=False)
-            children[-1] = lab
     except KeyboardInterrupt:
         lab.send_signal(signal.SIGTERM)
         code = lab.wait(10.0)
     finally:
-        for child in reversed(children):
-            child.stop(timeout=5.0)
-        machine.stop()
+        lab.stop(timeout=5.0)
+        machine.stop()  # the world and the ros2 daemon with it
         marker.unlink(missing_ok=True)
         clone.unlink(missing_ok=True)
         started.unlink(missing_ok=True)

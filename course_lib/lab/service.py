@@ -16,6 +16,7 @@ from typing import Any
 
 from ..core.errors import CourseError
 from ..sim.launcher import Spawner
+from .daemon_keeper import DaemonKeeper
 from .protocol import MAX_LINE, decode, encode, failure
 from .register import NodeRecord, NodeRegister
 from .world_keeper import WorldKeeper
@@ -50,12 +51,14 @@ class _Server(socketserver.ThreadingMixIn, socketserver.UnixStreamServer):
 
 
 class MachineService:
-    """Answer the kernels' requests: the world, and the register of lessons' nodes."""
+    """Answer the kernels' and terminals' requests: the world, the register of lessons'
+    nodes, and the lab's ros2 daemon (started with the first terminal)."""
 
-    def __init__(self, path: Path, spawn: Spawner) -> None:
+    def __init__(self, path: Path, spawn: Spawner, daemon: DaemonKeeper | None = None) -> None:
         self.path = path
         self.world = WorldKeeper(spawn)
         self.nodes = NodeRegister()
+        self.daemon = daemon
         self._ops: dict[str, Callable[[dict[str, Any]], dict[str, Any]]] = {
             "ping": lambda _r: {},
             "world.ensure": lambda r: self.world.ensure(
@@ -67,6 +70,7 @@ class MachineService:
             "node.stop": lambda r: {"stopped": bool(self.nodes.stop(str(r["tag"])))},
             "node.register": self._register,
             "node.list": lambda _r: {"nodes": [rec.as_dict() for rec in self.nodes.records()]},
+            "daemon.ensure": self._ensure_daemon,
         }
         self._server: _Server | None = None
         self._thread: threading.Thread | None = None
@@ -82,6 +86,11 @@ class MachineService:
     def _stop_world(self, _request: dict[str, Any]) -> dict[str, Any]:
         self.world.stop()
         return {}
+
+    def _ensure_daemon(self, _request: dict[str, Any]) -> dict[str, Any]:
+        if self.daemon is None:
+            raise CourseError("This lab keeps no ros2 daemon.", hint="run a `ros2` command.")
+        return dict(self.daemon.ensure())
 
     def _take(self, request: dict[str, Any]) -> dict[str, Any]:
         record = self.nodes.take(str(request["executable"]))
@@ -113,3 +122,5 @@ class MachineService:
             self._server = None
         self.path.unlink(missing_ok=True)
         self.world.stop()
+        if self.daemon is not None:
+            self.daemon.stop()

@@ -44,6 +44,12 @@ source() {
   source "$@"
 }
 
+# The lab's `ros2` daemon starts with its first terminal (course_lib/lab/daemon_keeper.py),
+# in the background: the prompt does not wait, and the first command finds it warm.
+if [ -n "${COURSE_LAB_SOCKET:-}" ]; then
+  (python -m course_lib.lab.daemon_keeper >/dev/null 2>&1 &)
+fi
+
 # Then what an interactive bash reads anyway.
 if [ -f "$HOME/.bashrc" ]; then
   source "$HOME/.bashrc"

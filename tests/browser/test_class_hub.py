@@ -232,7 +232,7 @@ def _progress_row(page: Any, hub: ClassHub, name: str) -> str:
 
 def _busy_lab(page: Any, artifacts: Path, name: str) -> None:
     """Run lesson 1, where the learner landed (its self-check records their progress), and
-    start a node from it: the server has a kernel, a ROS daemon and a node."""
+    start a node from it: the server has a kernel and a node."""
     run_all_cells(page)
     # the lesson's stored prompts ([1]: ...) look like a run that ended: wait for its end
     passed = re.compile(r"Everything passed \((\d+) of \1\)")

@@ -15,6 +15,7 @@ from collections.abc import Iterator
 
 import pytest
 from lab_server import ARTIFACTS, LabServer
+from lab_terminal import RestTerminal, lab_daemon
 
 from course_lib.core.host.procfs import environ as process_environ
 from course_lib.core.host.procfs import pid_alive
@@ -84,11 +85,41 @@ def lab() -> Iterator[LabServer]:
         server.stop()
 
 
+def test_a_lab_runs_no_daemon_until_its_first_terminal_opens(lab: LabServer) -> None:
+    """A learner who only reads and runs notebooks pays for no daemon (issue 66); the first
+    terminal starts it as the lab's child, and its first command finds it warm."""
+    domain = str(lab.domain_id)
+    kernel = json.loads(_post(lab, "/api/kernels"))  # a notebook open: still no daemon
+    assert not wait_until(lambda: daemon_pids(domain), 3.0), "the lab started a daemon"
+    terminal = RestTerminal(lab.base_url, lab.token)
+    daemon = lab_daemon(lab.process.pid)
+    assert daemon_pids(domain) == [daemon]
+    assert process_environ(daemon)["COURSE_LAB"] == "1"  # it journals the lab's parameters
+    terminal.run("ros2 daemon status", "The daemon is running")
+    second = RestTerminal(lab.base_url, lab.token)  # a second terminal: still one daemon
+    second.run("ros2 node list; echo listed-$?", r"listed-0")
+    assert daemon_pids(domain) == [daemon]
+    second.close()
+    terminal.close()
+    _post(lab, f"/api/kernels/{kernel['id']}", method="DELETE")
+    lab.process.send_signal(signal.SIGTERM)
+    assert wait_until(lambda: not pid_alive(daemon), 15), "the daemon outlived its lab"
+
+
+def _post(lab: LabServer, path: str, method: str = "POST") -> str:
+    request = urllib.request.Request(f"{lab.base_url}{path}?token={lab.token}", method=method)
+    if method == "POST":
+        request.data = b"{}"
+    with urllib.request.urlopen(request, timeout=60) as reply:
+        return reply.read().decode()
+
+
 def test_terminal_daemon_outlives_its_terminal_and_dies_with_the_lab(lab: LabServer) -> None:
     domain = str(lab.domain_id)
     terminal = LabTerminal(lab)
     shell = int(terminal.run('echo "shell:$$:"', r"shell:(\d+):")[1])
-    terminal.run("ros2 daemon stop", "The daemon has been stopped")  # the lab's own one
+    lab_daemon(lab.process.pid)  # the lab's own one, which the terminal asked for
+    terminal.run("ros2 daemon stop", "The daemon has been stopped")
     terminal.run("ros2 daemon start", "The daemon has been started")
     (daemon,) = daemon_pids(domain)
     assert process_environ(daemon)["COURSE_OWNER"] == owner_tag(lab.process.pid)

@@ -28,7 +28,7 @@ sys.path[:0] = [
 
 from jupyter_kernels import describe, pid_alive  # noqa: E402
 from lab_server import LabServer  # noqa: E402
-from lab_terminal import RestTerminal  # noqa: E402
+from lab_terminal import RestTerminal, lab_daemon  # noqa: E402
 from suite_env import independent_env  # noqa: E402
 
 from course_lib.core.host.signalling import LOG_ENV  # noqa: E402
@@ -103,8 +103,8 @@ def main() -> None:
     facts: dict[str, object] = {}
     pids = {"lab": lab.process.pid}
     pids["jupyterlab"] = named_child(lab.process.pid, "jupyter-lab")
-    pids["daemon"] = named_child(lab.process.pid, "course_lib.ros2.command.daemon")
     terminal = RestTerminal(lab.base_url, lab.token)
+    pids["daemon"] = lab_daemon(lab.process.pid)  # the lab's first terminal starts it
     pids["shell"] = terminal.shell_pid
     # the learner's own programs, which inherit the lab's environment (and its owner tag)
     pids["editor"] = int(terminal.run("sleep 600 & echo bg-pid=$!", r"bg-pid=(\d+)")[1])

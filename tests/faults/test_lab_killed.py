@@ -17,7 +17,7 @@ from pathlib import Path
 import psutil
 import pytest
 from jupyter_kernels import describe, wait_gone
-from lab_terminal import RestTerminal, rest
+from lab_terminal import RestTerminal, lab_daemon, rest
 from suite_env import independent_env
 
 from course_lib.core.paths import REPO_ROOT
@@ -44,6 +44,7 @@ def test_killed_lab_leaves_nothing_and_next_lab_says_so(private_tmp) -> None:
     lab = LabServer([], FOLDER, env=private_tmp)
     try:
         terminal = RestTerminal(lab.base_url, lab.token)
+        lab_daemon(lab.process.pid)  # the lab's first terminal starts it
         rest(lab.base_url, lab.token, "POST", "/api/kernels")
         # the page saves its open tabs in the workspace, as the browser tests' pages do
         stale = {"data": {STALE_TAB: {"data": {"path": STALE_TAB[9:], "factory": "Notebook"}}}}

@@ -152,12 +152,17 @@ def start_detached(env: Mapping[str, str]) -> bool:
 def stop_daemon(domain_id: int | str, *, timeout: float = STOP_TIMEOUT_S) -> bool:
     """Stop the domain's daemon and wait until its process is gone; False if none ran.
 
-    Raises TimeoutError when it is still there after `timeout` seconds.
+    Raises TimeoutError when it is still there after `timeout` seconds. A daemon being
+    started (by a command, or by a lab as its terminal opens) is waited for, then stopped.
     """
+    fd = os.open(daemon_start_lock(domain_id), os.O_RDWR | os.O_CREAT, 0o600)
     try:
+        fcntl.flock(fd, fcntl.LOCK_EX)  # held for at most START_TIMEOUT_S by a start
         sock = connect(daemon_socket(domain_id))
     except DaemonUnavailable:
         return False
+    finally:
+        os.close(fd)
     with sock, sock.makefile("r", encoding="utf-8") as reader:
         sock.sendall(json.dumps({"control": SHUTDOWN}).encode() + b"\n")
         reply = json.loads(reader.readline() or "{}")

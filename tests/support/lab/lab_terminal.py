@@ -16,7 +16,7 @@ from typing import Any
 from tornado.httpclient import HTTPRequest
 from tornado.websocket import websocket_connect
 
-__all__ = ["RestTerminal", "close_terminals", "open_terminals", "rest"]
+__all__ = ["RestTerminal", "close_terminals", "lab_daemon", "open_terminals", "rest"]
 
 CLOSE_WAIT_S = 5.0  # tornado gives a server that long to answer a close
 _OPENER = urllib.request.build_opener(urllib.request.ProxyHandler({}))  # the lab is local
@@ -32,6 +32,24 @@ def rest(base_url: str, token: str, method: str, path: str, body: Any = None) ->
     with _OPENER.open(request, timeout=30) as reply:  # LabServer returns once the lab answers
         body = reply.read()
     return json.loads(body) if body else None
+
+
+def lab_daemon(lab_pid: int, timeout: float = 30.0) -> int:
+    """Return the pid of the lab's ros2 daemon, the lab's child that its first terminal starts
+    (course_lib/lab/daemon_keeper.py): wait for it."""
+    import psutil
+
+    deadline = time.monotonic() + timeout
+    while True:
+        for child in psutil.Process(lab_pid).children():
+            try:
+                if "course_lib.ros2.command.daemon" in child.cmdline():
+                    return child.pid
+            except psutil.Error:
+                continue
+        if time.monotonic() > deadline:
+            raise AssertionError(f"the lab (pid {lab_pid}) started no ros2 daemon in {timeout} s")
+        time.sleep(0.05)
 
 
 async def _connect(url: str, token: str) -> Any:
