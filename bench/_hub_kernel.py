@@ -2,8 +2,8 @@
 
 Not a bench script itself. The kernel starts as the page starts one (`POST /api/kernels` on
 `{hub}/user/{name}`) and its cells go over the kernel's websocket, so the hub's proxy carries
-every message, as it does for a learner's browser. Same interface as bench._labs.LabKernel:
-`submit(code)` then `collect(msg_id)`, `run(code)`, `shutdown()`.
+every message, as it does for a learner's browser. A bench._labs.CellKernel:
+`submit(code)` then `collect(msg_id)`, `run(code)`, and `shutdown()`.
 """
 
 from __future__ import annotations
@@ -19,10 +19,12 @@ from typing import Any
 
 import requests
 
+from bench._labs import CellKernel
+
 __all__ = ["HubKernel"]
 
 
-class HubKernel:
+class HubKernel(CellKernel):
     """One kernel of `base` (a learner's server through the hub, `{hub}/user/{name}`)."""
 
     def __init__(self, base: str, token: str, timeout: float = 120.0) -> None:
@@ -63,7 +65,7 @@ class HubKernel:
             msg_id = self._send("kernel_info_request", {}, "shell")
             try:
                 while True:
-                    message = self._read(min(2.0, max(0.1, deadline - time.monotonic())))
+                    message = self.read_message(min(2.0, max(0.1, deadline - time.monotonic())))
                     if message["parent_header"].get("msg_id") == msg_id and (
                         message["msg_type"] == "kernel_info_reply"
                     ):
@@ -97,7 +99,7 @@ class HubKernel:
         asyncio.run_coroutine_threadsafe(write(), self.loop).result(60)
         return msg_id
 
-    def _read(self, timeout: float) -> dict[str, Any]:
+    def read_message(self, timeout: float) -> dict[str, Any]:
         try:
             message = self.messages.get(timeout=timeout)
         except queue.Empty as exc:
@@ -117,36 +119,6 @@ class HubKernel:
             "stop_on_error": True,
         }
         return self._send("execute_request", content, "shell")
-
-    def collect(self, msg_id: str, timeout: float = 120.0) -> str:
-        """Wait for the cell `msg_id` to finish; return what it printed, raise if it failed."""
-        printed: list[str] = []
-        deadline = time.monotonic() + timeout
-        while True:
-            remaining = deadline - time.monotonic()
-            if remaining <= 0:
-                raise TimeoutError(f"a cell did not finish within {timeout:g} s")
-            try:
-                message = self._read(remaining)
-            except TimeoutError:
-                continue  # the deadline is checked above
-            if message["parent_header"].get("msg_id") != msg_id:
-                continue
-            kind, content = message["msg_type"], message["content"]
-            if kind == "stream":
-                printed.append(content["text"])
-            elif kind == "error":
-                raise RuntimeError(
-                    f"cell failed: {content['ename']}: {content['evalue']}\n{''.join(printed)}"
-                )
-            elif kind == "status" and content["execution_state"] == "idle":
-                return "".join(printed)
-
-    def run(self, code: str, timeout: float = 120.0) -> float:
-        """Execute `code` as one cell; return its wall time in seconds, raise if it failed."""
-        started = time.monotonic()
-        self.collect(self.submit(code), timeout)
-        return time.monotonic() - started
 
     def shutdown(self) -> None:
         """Close the websocket and stop the kernel (and every course process it owns)."""

@@ -13,6 +13,7 @@ import queue
 import re
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -26,7 +27,7 @@ from course_lib.lab.protocol import SOCKET_ENV
 from course_lib.processes.children import ChildProcess, spawn
 from course_lib.processes.orphans import OWNER_ENV, OWNER_NS_ENV, owner_tag
 
-__all__ = ["Lab", "LabKernel", "start_lab", "tree_pids"]
+__all__ = ["CellKernel", "Lab", "LabKernel", "collect_cell", "start_lab", "tree_pids"]
 
 _URL = re.compile(r"(http://127\.0\.0\.1:(\d+)/lab\S*)")
 
@@ -73,7 +74,29 @@ def start_lab(timeout: float = 90.0) -> Lab:
     return Lab(lab, env, int(url[2]), token[1] if token else "")
 
 
-class LabKernel:
+class CellKernel:
+    """What the benches do with a kernel: `submit(code)`, then `collect(msg_id)`; `run(code)`.
+    A subclass submits and reads the kernel's messages (`read_message`)."""
+
+    def submit(self, code: str) -> str:
+        raise NotImplementedError
+
+    def read_message(self, timeout: float) -> dict[str, Any]:
+        """Return the kernel's next message; queue.Empty or TimeoutError when none came."""
+        raise NotImplementedError
+
+    def collect(self, msg_id: str, timeout: float = 120.0) -> str:
+        """Wait for the cell `msg_id` to finish; return what it printed, raise if it failed."""
+        return collect_cell(self.read_message, msg_id, timeout)
+
+    def run(self, code: str, timeout: float = 120.0) -> float:
+        """Execute `code` as one cell; return its wall time in seconds, raise if it failed."""
+        started = time.monotonic()
+        self.collect(self.submit(code), timeout)
+        return time.monotonic() - started
+
+
+class LabKernel(CellKernel):
     """A real ipykernel with a lab's environment, as that lab's JupyterLab gives its kernels."""
 
     def __init__(self, lab: Lab) -> None:
@@ -91,35 +114,8 @@ class LabKernel:
         """Start executing `code` as one cell; return its message id for collect()."""
         return self.client.execute(code, store_history=False)
 
-    def collect(self, msg_id: str, timeout: float = 120.0) -> str:
-        """Wait for the cell `msg_id` to finish; return what it printed, raise if it failed."""
-        printed: list[str] = []
-        deadline = time.monotonic() + timeout
-        while True:
-            remaining = deadline - time.monotonic()
-            if remaining <= 0:
-                raise TimeoutError(f"a cell did not finish within {timeout:g} s")
-            try:
-                msg = self.client.get_iopub_msg(timeout=remaining)
-            except queue.Empty:  # the deadline is checked above
-                continue
-            if msg["parent_header"].get("msg_id") != msg_id:
-                continue
-            kind, content = msg["msg_type"], msg["content"]
-            if kind == "stream":
-                printed.append(content["text"])
-            elif kind == "error":
-                raise RuntimeError(
-                    f"cell failed: {content['ename']}: {content['evalue']}\n{''.join(printed)}"
-                )
-            elif kind == "status" and content["execution_state"] == "idle":
-                return "".join(printed)
-
-    def run(self, code: str, timeout: float = 120.0) -> float:
-        """Execute `code` as one cell; return its wall time in seconds, raise if it failed."""
-        started = time.monotonic()
-        self.collect(self.submit(code), timeout)
-        return time.monotonic() - started
+    def read_message(self, timeout: float) -> dict[str, Any]:
+        return dict(self.client.get_iopub_msg(timeout=timeout))
 
     def shutdown(self) -> None:
         """Stop the kernel (and every course process it owns)."""
@@ -127,6 +123,32 @@ class LabKernel:
             self.client.stop_channels()
         finally:
             self.manager.shutdown_kernel(now=True)
+
+
+def collect_cell(read: Callable[[float], dict[str, Any]], msg_id: str, timeout: float) -> str:
+    """Read a kernel's messages with `read(seconds)` (queue.Empty or TimeoutError when none
+    came) until the cell `msg_id` is done; return what it printed, raise if it failed."""
+    printed: list[str] = []
+    deadline = time.monotonic() + timeout
+    while True:
+        remaining = deadline - time.monotonic()
+        if remaining <= 0:
+            raise TimeoutError(f"a cell did not finish within {timeout:g} s")
+        try:
+            msg = read(remaining)
+        except (queue.Empty, TimeoutError):  # the deadline is checked above
+            continue
+        if msg["parent_header"].get("msg_id") != msg_id:
+            continue
+        kind, content = msg["msg_type"], msg["content"]
+        if kind == "stream":
+            printed.append(content["text"])
+        elif kind == "error":
+            raise RuntimeError(
+                f"cell failed: {content['ename']}: {content['evalue']}\n{''.join(printed)}"
+            )
+        elif kind == "status" and content["execution_state"] == "idle":
+            return "".join(printed)
 
 
 def tree_pids(roots: list[int]) -> list[int]:
