@@ -3,7 +3,8 @@
 Run: .venv/bin/python -m bench.class_capacity [--max 16] [--window 30] [--gets 200]
      [--idle N] [--keep-going] [--record]
 A learner is what a learner's server runs: a lab as `make lab` starts it (JupyterLab, the lab's
-machine service and ros2 daemon, the world: MuJoCo simulation and meshcat view) and a real
+machine service, the world: MuJoCo simulation and meshcat view; no terminal, so no ros2
+daemon, which starts with a lab's first terminal) and a real
 kernel running lesson 7's cells (start(7), world, `%ros2 run parameter_tests param_vel`,
 the live speed plot, `%ros2 param set ... velocity 0.2`, the drive), plus one websocket client
 per learner on the 3D view through JupyterLab's proxy (the learner's browser tab). For N = 1,

@@ -47,7 +47,7 @@ def _one_hub(learners: list[str], environment: Path, folder: Path, wall: bool) -
         starts, memory = [], []
         for name in learners:
             starts.append(sign_in(hub.url, name, hub.passwords[name]))
-            time.sleep(3.0)  # the lab settles: its daemon and machine service are up
+            time.sleep(3.0)  # the lab settles: its machine service is up
             memory.append(_memory_mib(name))
         return {"up": hub.up_s, "walled": hub.walled, "starts": starts, "memory": memory}
 
