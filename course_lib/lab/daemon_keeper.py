@@ -11,9 +11,9 @@ stops. A command typed before it answers starts one itself, owned by the lab all
 
 from __future__ import annotations
 
-import contextlib
 import fcntl
 import os
+import sys
 import threading
 import time
 from collections.abc import Mapping
@@ -70,12 +70,17 @@ class DaemonKeeper:
 
 def main() -> int:
     """Ask this terminal's lab for its daemon; quietly nothing outside a lab."""
+    from ..core.errors import CourseError
     from .client import machine_client
 
     client = machine_client()
-    if client is not None:
-        with contextlib.suppress(Exception):  # a command typed later starts one anyway
-            client.request("daemon.ensure", timeout=START_TIMEOUT_S + 5.0)
+    if client is None:
+        return 0
+    try:
+        client.request("daemon.ensure", timeout=START_TIMEOUT_S + 5.0)
+    except CourseError as err:  # the service logged why; a command typed later starts one
+        print(err.message, file=sys.stderr)
+        return 1
     return 0
 
 
