@@ -415,7 +415,7 @@ def _write_record(data: dict[str, Any]) -> None:
         held_cores(float(per["cpu_cores"]), cores, int(measured["learners_held"])),
         pod_memory_mib(data),
     )
-    if "hub" in data:  # after `kubernetes`, as the file has always been read
+    if "hub" in data:  # last in the file: the class's figures and requests come first
         data["hub"] = data.pop("hub")
     RECORD.parent.mkdir(exist_ok=True)
     RECORD.write_text(

@@ -11,16 +11,13 @@ stops. A command typed before it answers starts one itself, owned by the lab all
 
 from __future__ import annotations
 
-import fcntl
-import os
 import sys
 import threading
 import time
 from collections.abc import Mapping
 
 from ..processes.children import ChildProcess
-from ..ros2.node.connect import START_TIMEOUT_S, daemon_argv, daemon_running
-from ..ros2.node.wire import daemon_start_lock
+from ..ros2.node.connect import START_TIMEOUT_S, daemon_argv, daemon_running, start_turn
 from ..sim.launcher import Spawner
 
 __all__ = ["DaemonKeeper", "main"]
@@ -38,27 +35,22 @@ class DaemonKeeper:
     def ensure(self, timeout: float = START_TIMEOUT_S) -> dict[str, bool]:
         """Start the daemon unless one answers; return {"started": whether this call did}.
 
-        Takes its turn with commands that start one (the same lock file as
-        course_lib.ros2.node.connect), so there is never a second daemon.
+        Takes its turn with commands that start or stop one (`start_turn`), so there is never
+        a second daemon.
         """
-        with self._lock:
-            fd = os.open(daemon_start_lock(self.domain), os.O_RDWR | os.O_CREAT, 0o600)
-            try:
-                fcntl.flock(fd, fcntl.LOCK_EX)
-                if daemon_running(self.domain):
-                    return {"started": False}
-                child = self._spawn(daemon_argv(), name=f"ros2-daemon-{self.domain}")
-                self._child = child
-                deadline = time.monotonic() + timeout
-                while not daemon_running(self.domain):
-                    if not child.alive or time.monotonic() > deadline:
-                        raise RuntimeError(
-                            f"the lab's ros2 daemon did not start:\n{child.text()[-2000:]}"
-                        )
-                    time.sleep(0.02)
-                return {"started": True}
-            finally:
-                os.close(fd)  # releases the lock
+        with self._lock, start_turn(self.domain):
+            if daemon_running(self.domain):
+                return {"started": False}
+            child = self._spawn(daemon_argv(), name=f"ros2-daemon-{self.domain}")
+            self._child = child
+            deadline = time.monotonic() + timeout
+            while not daemon_running(self.domain):
+                if not child.alive or time.monotonic() > deadline:
+                    raise RuntimeError(
+                        f"the lab's ros2 daemon did not start:\n{child.text()[-2000:]}"
+                    )
+                time.sleep(0.02)
+            return {"started": True}
 
     def stop(self) -> None:
         """Stop the daemon this keeper started, if it still runs."""

@@ -99,8 +99,13 @@ def test_a_lab_runs_no_daemon_until_its_first_terminal_opens(lab: LabServer) -> 
     second = RestTerminal(lab.base_url, lab.token)  # a second terminal: still one daemon
     second.run("ros2 node list; echo listed-$?", r"listed-0")
     assert daemon_pids(domain) == [daemon]
-    second.close()
-    terminal.close()
+    os.kill(daemon, signal.SIGKILL)  # killed (the chaos walk's fault): the next terminal's
+    assert wait_until(lambda: not pid_alive(daemon), 5)
+    third = RestTerminal(lab.base_url, lab.token)
+    daemon = lab_daemon(lab.process.pid)  # ... is the lab's child again, not a stray one
+    assert daemon_pids(domain) == [daemon]
+    for opened in (third, second, terminal):
+        opened.close()
     _post(lab, f"/api/kernels/{kernel['id']}", method="DELETE")
     lab.process.send_signal(signal.SIGTERM)
     assert wait_until(lambda: not pid_alive(daemon), 15), "the daemon outlived its lab"

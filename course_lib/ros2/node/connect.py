@@ -13,7 +13,7 @@ import socket
 import subprocess
 import sys
 import time
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from pathlib import Path
 
 from ...core.host import procfs
@@ -38,6 +38,7 @@ __all__ = [
     "request",
     "spawn_detached",
     "start_detached",
+    "start_turn",
     "stop_daemon",
 ]
 
@@ -115,13 +116,21 @@ def _start_once(env: Mapping[str, str]) -> tuple[socket.socket, bool]:
     second daemon nobody asked for.
     """
     path = daemon_socket(env["ROS_DOMAIN_ID"])
-    fd = os.open(daemon_start_lock(env["ROS_DOMAIN_ID"]), os.O_RDWR | os.O_CREAT, 0o600)
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX)  # held for at most START_TIMEOUT_S by the one ahead
+    with start_turn(env["ROS_DOMAIN_ID"]):
         with contextlib.suppress(DaemonUnavailable):
             return connect(path), False
         spawn_detached(env)
         return _waitconnect(path, START_TIMEOUT_S), True
+
+
+@contextlib.contextmanager
+def start_turn(domain_id: int | str) -> Iterator[None]:
+    """Hold the domain's start lock: whatever starts or stops its daemon (a command, a lab as
+    its terminal opens, `ros2 daemon stop`) takes turns, at most START_TIMEOUT_S each."""
+    fd = os.open(daemon_start_lock(domain_id), os.O_RDWR | os.O_CREAT, 0o600)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
     finally:
         os.close(fd)  # releases the lock
 
@@ -155,14 +164,11 @@ def stop_daemon(domain_id: int | str, *, timeout: float = STOP_TIMEOUT_S) -> boo
     Raises TimeoutError when it is still there after `timeout` seconds. A daemon being
     started (by a command, or by a lab as its terminal opens) is waited for, then stopped.
     """
-    fd = os.open(daemon_start_lock(domain_id), os.O_RDWR | os.O_CREAT, 0o600)
     try:
-        fcntl.flock(fd, fcntl.LOCK_EX)  # held for at most START_TIMEOUT_S by a start
-        sock = connect(daemon_socket(domain_id))
+        with start_turn(domain_id):
+            sock = connect(daemon_socket(domain_id))
     except DaemonUnavailable:
         return False
-    finally:
-        os.close(fd)
     with sock, sock.makefile("r", encoding="utf-8") as reader:
         sock.sendall(json.dumps({"control": SHUTDOWN}).encode() + b"\n")
         reply = json.loads(reader.readline() or "{}")

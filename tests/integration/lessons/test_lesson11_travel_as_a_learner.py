@@ -18,7 +18,7 @@ import pytest
 
 from course_lib.config.course import load_course_settings
 from course_lib.lessons import Lesson
-from course_lib.lessons.exercise import START_GRACE_S, START_GRACE_WALL_S, TravelExercise
+from course_lib.lessons.exercise import START_GRACE_WALL_S, TravelExercise
 from course_lib.notebook import start_world
 from course_lib.notebook.magics import run_line
 from course_lib.ros2.api import nodes_and_params as api
@@ -188,13 +188,11 @@ def test_a_robot_that_never_moves_gets_the_whole_grace_on_a_fast_world(
     lesson: Lesson, travel: TravelExercise
 ) -> None:
     """At 4 times real time the grace's 3 simulated seconds last 0.75 wall seconds: less than a
-    busy host may take to run the node's first command. The check waits 2 wall seconds too,
-    counted from the world's time when it starts (not a resting robot's last reading)."""
-    world = lesson.current_world
+    busy host may take to run the node's first command. The check waits 2 wall seconds too
+    (which, at 4 times real time, also covers the simulated grace)."""
     time.sleep(1.0)  # the robot has rested: its readings come a simulated second to a message
-    began_sim, began_wall = world.odom().time_s, time.monotonic()
+    began_wall = time.monotonic()
     verdict = travel.check()
     waited_wall = time.monotonic() - began_wall
     assert "did not move" in verdict.message, verdict.message
     assert waited_wall >= START_GRACE_WALL_S, f"gave up after {waited_wall:.2f} s"
-    assert world.odom().time_s - began_sim >= START_GRACE_S
