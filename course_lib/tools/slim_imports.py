@@ -14,6 +14,10 @@ Some packages the course's processes import run far more at import than those pr
 - every generated interface package (`geometry_msgs.msg`, `std_srvs.srv`, ...) imports all
   its interfaces; a few have fixed-size arrays, which import numpy: `param_vel`, which
   publishes a Twist, loaded numpy (6.5 MiB) for geometry_msgs' covariance messages.
+- a generated interface module with a fixed-size array imports numpy as it loads, though
+  only building or checking such a message uses it. Every service type of Jazzy carries one
+  (its introspection event's `ServiceEventInfo.client_gid`, `uint8[16]`), so every node
+  loaded numpy for its parameter services: 10 MiB in `param_vel`, a kernel and a daemon.
 
 A finder installed at interpreter start-up (a `.pth` file that `make setup` writes into the
 environment, `install_pth`) loads these packages without running their `__init__`; each name
@@ -21,7 +25,9 @@ the `__init__` would have bound is imported on first use (PEP 562 `__getattr__`)
 `from rosidl_generator_py import generate_py` (a colcon build), `meshcat.Visualizer` (a
 notebook) and `from geometry_msgs.msg import *` work as before. An interface package is
 recognised by its `__init__`, which rosidl generates: only `from <package>._<module> import
-<Name>  # noqa: F401` lines; any other `__init__` runs as written.
+<Name>  # noqa: F401` lines; any other `__init__` runs as written. Its modules whose
+generated `import numpy` line would load numpy run without that line: their `numpy` is a
+stand-in that imports numpy on first use (and then gives way to it).
 """
 
 from __future__ import annotations
@@ -39,7 +45,14 @@ if TYPE_CHECKING:
 
     _Binding = tuple[str, str | None] | Callable[[], str]
 
-__all__ = ["DEFERRED_MODULES", "PTH_NAME", "SLIM_PACKAGES", "install", "install_pth"]
+__all__ = [
+    "DEFERRED_MODULES",
+    "ON_FIRST_USE",
+    "PTH_NAME",
+    "SLIM_PACKAGES",
+    "install",
+    "install_pth",
+]
 
 # After ros_wheels_bootstrapper.pth ("s" sorts after "r"), so the bootstrapper's re-execution
 # happens before this module is imported, not after.
@@ -73,6 +86,10 @@ SLIM_PACKAGES: dict[str, dict[str, _Binding]] = {
 # Module -> the one function its package takes from it: the module (and what it imports) is
 # loaded when that function is first called.
 DEFERRED_MODULES = {"httpx._main": "main"}
+# Module -> modules it imports at its top but uses only in code the course never runs: each
+# is imported on its first use. jupyter-server-proxy's handlers use aiohttp only to probe a
+# process they started themselves (`server_processes`, which the course configures none of).
+ON_FIRST_USE = {"jupyter_server_proxy.handlers": ("aiohttp",)}
 
 # The names each package's own __init__ lists in __all__ (rosidl_generator_py lists
 # generate_py only when its generator imports; it does here, with the build wheels).
@@ -81,6 +98,8 @@ _ALL = {"rosidl_generator_py": ["import_type_support", "generate_py"]}
 
 _INTERFACE_KINDS = ("msg", "srv", "action")
 _GENERATED_SUFFIX = "  # noqa: F401"
+# How rosidl_generator_py imports numpy for a fixed-size array member (its `_idl.py.em`).
+_GENERATED_NUMPY_IMPORT = "\nimport numpy  # noqa: E402, I100\n"
 
 
 def _interface_bindings(fullname: str, init_file: str) -> dict[str, _Binding] | None:
@@ -177,6 +196,89 @@ class _DeferredLoader(Loader):
         setattr(module, function, deferred)
 
 
+class _ImportOnFirstUse:
+    """Stand for a module a module imports at its top until the module first uses it."""
+
+    def __init__(self, namespace: dict[str, object], name: str) -> None:
+        self._namespace = namespace
+        self._name = name
+
+    def __getattr__(self, attribute: str) -> object:
+        module = importlib.import_module(self._name)
+        self._namespace[self._name] = module  # its later uses go to the module itself
+        return getattr(module, attribute)
+
+
+class _OnFirstUseLoader(Loader):
+    """Run a module without its top-level `import <name>` statements for `names` (the same
+    lines: a traceback still points at its own code); each name is a stand-in that imports
+    the module on first use."""
+
+    def __init__(self, path: str, names: tuple[str, ...]) -> None:
+        self._path = path
+        self._names = names
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> None:
+        return None  # the default module
+
+    def exec_module(self, module: ModuleType) -> None:
+        import ast
+
+        with open(self._path, encoding="utf-8") as file:
+            tree = ast.parse(file.read(), self._path)
+        namespace = vars(module)
+        for index, statement in enumerate(tree.body):
+            if not isinstance(statement, ast.Import):
+                continue
+            imported = [(alias.name, alias.asname) for alias in statement.names]
+            if all(name in self._names and alias is None for name, alias in imported):
+                tree.body[index] = ast.copy_location(ast.Pass(), statement)
+                for name, _ in imported:
+                    namespace[name] = _ImportOnFirstUse(namespace, name)
+        exec(compile(tree, self._path, "exec"), namespace)
+
+
+def _on_first_use_spec(
+    fullname: str, path: Sequence[str] | None, names: tuple[str, ...]
+) -> importlib.machinery.ModuleSpec | None:
+    """Return the module's spec with the loader above, if it imports one of `names` that is
+    not loaded yet (as found: None lets the next finder look)."""
+    spec = importlib.machinery.PathFinder.find_spec(fullname, path)
+    if spec is None or not (spec.origin or "").endswith(".py"):
+        return spec
+    waiting = tuple(name for name in names if name not in sys.modules)
+    if waiting:
+        spec.loader = _OnFirstUseLoader(spec.origin or "", waiting)
+    return spec
+
+
+def _interface_module_spec(
+    fullname: str, path: Sequence[str] | None
+) -> importlib.machinery.ModuleSpec | None:
+    """Return a generated interface module's spec: numpy on first use if its source imports it
+    for a fixed-size array (None: not found here, the next finder looks)."""
+    spec = importlib.machinery.PathFinder.find_spec(fullname, path)
+    if spec is None or "numpy" in sys.modules or not (spec.origin or "").endswith(".py"):
+        return spec
+    try:
+        with open(spec.origin or "", encoding="utf-8") as file:
+            imports_numpy = _GENERATED_NUMPY_IMPORT in file.read()
+    except OSError:
+        return spec
+    if imports_numpy:
+        spec.loader = _OnFirstUseLoader(spec.origin or "", ("numpy",))
+    return spec
+
+
+def _is_interface_module(fullname: str) -> bool:
+    """Return True for `<package>.<msg|srv|action>._<module>` of a generated package."""
+    parts = fullname.split(".")
+    if len(parts) != 3 or parts[1] not in _INTERFACE_KINDS or not parts[2].startswith("_"):
+        return False
+    spec = getattr(sys.modules.get(f"{parts[0]}.{parts[1]}"), "__spec__", None)
+    return spec is not None and isinstance(spec.loader, _PackageLoader)
+
+
 class _Finder:
     """Find the packages as the path finder does, and give them the loader above."""
 
@@ -190,6 +292,10 @@ class _Finder:
             return importlib.machinery.ModuleSpec(
                 fullname, _DeferredLoader(real, DEFERRED_MODULES[fullname]), origin=real.origin
             )
+        if _is_interface_module(fullname):
+            return _interface_module_spec(fullname, path)
+        if fullname in ON_FIRST_USE:
+            return _on_first_use_spec(fullname, path, ON_FIRST_USE[fullname])
         interface = fullname.count(".") == 1 and fullname.rpartition(".")[2] in _INTERFACE_KINDS
         if not interface and fullname not in SLIM_PACKAGES:
             return None

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import ast
 import importlib.machinery
+import importlib.util
 import json
 import subprocess
 import sys
@@ -132,6 +133,64 @@ print(json.dumps([loaded, "PoseWithCovariance" in names, len(names), "numpy" in 
     assert not numpy  # only the covariance messages need it
 
 
+def test_a_node_serving_and_calling_parameter_services_never_loads_numpy() -> None:
+    """Every Jazzy service type carries ServiceEventInfo (a uint8[16]), whose generated module
+    imports numpy: `param_vel`, each kernel and each daemon paid 10 MiB for it."""
+    program = """
+import json, sys
+import rclpy
+from rcl_interfaces.srv import GetParameters
+rclpy.init()
+node = rclpy.create_node("numpy_probe")
+node.declare_parameter("velocity", 0.2)
+client = node.create_client(GetParameters, "/numpy_probe/get_parameters")
+assert client.wait_for_service(10.0)
+future = client.call_async(GetParameters.Request(names=["velocity"]))
+rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
+print(json.dumps([future.result().values[0].double_value, "numpy" in sys.modules]))
+node.destroy_node()
+rclpy.shutdown()
+"""
+    value, numpy = json.loads(_run(program))
+    assert value == 0.2
+    assert not numpy, "a node with parameter services loaded numpy"
+
+
+def test_a_message_with_a_fixed_size_array_loads_numpy_when_built() -> None:
+    program = """
+import json, sys
+from geometry_msgs.msg import PoseWithCovariance
+import geometry_msgs.msg._pose_with_covariance as module
+before = "numpy" in sys.modules
+pose = PoseWithCovariance()
+pose.covariance[35] = 2.5
+import numpy
+ones = [1.0] * 36
+equal = PoseWithCovariance(covariance=ones) == PoseWithCovariance(covariance=ones)
+print(json.dumps([before, module.numpy is numpy, float(pose.covariance.sum()), equal]))
+"""
+    before, bound, total, equal = json.loads(_run(program))
+    assert not before  # imported, not built: numpy waits
+    assert bound  # once used, the module's numpy is numpy itself (no stand-in in the way)
+    assert total == 2.5 and equal
+
+
+def test_a_generated_module_keeps_its_line_numbers() -> None:
+    """A traceback through a generated module points at the line that raised it."""
+    program = """
+import traceback
+from geometry_msgs.msg import PoseWithCovariance
+try:
+    PoseWithCovariance(covariance=["not a number"] * 36)
+except ValueError:
+    frame = traceback.extract_tb(__import__("sys").exc_info()[2])[-1]
+    print(frame.lineno, frame.line)
+"""
+    lineno, line = _run(program).strip().split(" ", 1)
+    source = Path(importlib.util.find_spec("geometry_msgs.msg._pose_with_covariance").origin)
+    assert source.read_text().splitlines()[int(lineno) - 1].strip() == line.strip()
+
+
 def test_an_interface_package_binds_every_name_as_its_generated_init() -> None:
     program = """
 from geometry_msgs.msg import *
@@ -152,6 +211,31 @@ def test_jupyterlab_never_loads_httpxs_command_line_client() -> None:
     """JupyterLab's extension manager imports httpx, whose __init__ imports its CLI: 4 MiB."""
     program = "import sys, jupyterlab.labapp; print(sorted({'rich', 'click'} & set(sys.modules)))"
     assert _run(program) == "[]\n"
+
+
+def test_jupyterlab_never_loads_aiohttp_for_its_proxy() -> None:
+    """jupyter-server-proxy's handlers import aiohttp (and aiodns, yarl, multidict, ...) only
+    to probe processes it would start itself: 8.5 MiB in every learner's server."""
+    program = """
+import json, sys
+import jupyter_server_proxy.handlers as handlers
+print(json.dumps([sorted({"aiohttp", "aiodns", "yarl"} & set(sys.modules)),
+                  type(handlers.aiohttp).__name__]))
+"""
+    loaded, stand_in = json.loads(_run(program))
+    assert loaded == [], f"the proxy's handlers loaded {loaded}"
+    assert stand_in == "_ImportOnFirstUse"
+
+
+def test_the_proxys_aiohttp_still_loads_on_first_use() -> None:
+    program = """
+import sys
+import jupyter_server_proxy.handlers as handlers
+import aiohttp
+connector = handlers.aiohttp.ClientConnectionError
+print(connector is aiohttp.ClientConnectionError, handlers.aiohttp is aiohttp)
+"""
+    assert _run(program) == "True True\n"
 
 
 def test_httpxs_command_line_client_still_runs() -> None:
