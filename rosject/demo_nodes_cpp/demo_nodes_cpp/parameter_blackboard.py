@@ -4,6 +4,8 @@ The real node (C++) is an rclcpp node with allow_undeclared_parameters and
 automatically_declare_parameters_from_overrides; so is this one, and it logs the same line.
 """
 
+import time
+
 import rclpy
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
@@ -29,6 +31,19 @@ class ParameterBlackboard(Node):
         )
 
 
+def _shut_down_by_ctrl_c():
+    """Return True if rclpy's signal thread shuts the context down within a second.
+
+    Ctrl-C raises in whatever the main thread runs, also inside rclpy's own code (turning a
+    message into Python), which then fails with some other error before that thread, which
+    needs the GIL, has shut the context down.
+    """
+    deadline = time.monotonic() + 1.0
+    while rclpy.ok() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    return not rclpy.ok()
+
+
 def main(args=None):
     rclpy.init(args=args)
     node = ParameterBlackboard()
@@ -37,7 +52,7 @@ def main(args=None):
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception as error:
-        if rclpy.ok():
+        if not _shut_down_by_ctrl_c():
             raise
         # Ctrl-C: rclpy's signal thread shut the context down under a running callback
         node.get_logger().debug(f'Ctrl-C ended a running callback: {error!r}')

@@ -1,5 +1,7 @@
 """The tutorial's velocity node, grown up: ranges, a read-only parameter, an on-set callback."""
 
+import time
+
 from geometry_msgs.msg import Twist
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
 import rclpy
@@ -91,6 +93,19 @@ class DescriptorVel(Node):
         self.publisher.publish(self.msg)
 
 
+def _shut_down_by_ctrl_c():
+    """Return True if rclpy's signal thread shuts the context down within a second.
+
+    Ctrl-C raises in whatever the main thread runs, also inside rclpy's own code (turning a
+    message into Python), which then fails with some other error before that thread, which
+    needs the GIL, has shut the context down.
+    """
+    deadline = time.monotonic() + 1.0
+    while rclpy.ok() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    return not rclpy.ok()
+
+
 def main(args=None):
     rclpy.init(args=args)
     node = DescriptorVel()
@@ -99,7 +114,7 @@ def main(args=None):
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception as error:
-        if rclpy.ok():
+        if not _shut_down_by_ctrl_c():
             raise
         # Ctrl-C: rclpy's signal thread shut the context down under a running callback
         node.get_logger().debug(f'Ctrl-C ended a running callback: {error!r}')

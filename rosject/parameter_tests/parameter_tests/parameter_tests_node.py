@@ -1,5 +1,7 @@
 """The tutorial's node: publishes its `velocity` parameter as linear.x on cmd_vel."""
 
+import time
+
 from geometry_msgs.msg import Twist
 from rcl_interfaces.msg import ParameterDescriptor
 import rclpy
@@ -27,6 +29,19 @@ class VelParam(Node):
         self.publisher.publish(self.msg)
 
 
+def _shut_down_by_ctrl_c():
+    """Return True if rclpy's signal thread shuts the context down within a second.
+
+    Ctrl-C raises in whatever the main thread runs, also inside rclpy's own code (turning a
+    message into Python), which then fails with some other error before that thread, which
+    needs the GIL, has shut the context down.
+    """
+    deadline = time.monotonic() + 1.0
+    while rclpy.ok() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    return not rclpy.ok()
+
+
 def main(args=None):
     rclpy.init(args=args)
     node = VelParam()
@@ -35,7 +50,7 @@ def main(args=None):
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception as error:
-        if rclpy.ok():
+        if not _shut_down_by_ctrl_c():
             raise
         # Ctrl-C: rclpy's signal thread shut the context down under a running callback
         node.get_logger().debug(f'Ctrl-C ended a running callback: {error!r}')

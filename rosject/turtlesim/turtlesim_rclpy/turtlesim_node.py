@@ -6,6 +6,7 @@ window is a page in the browser (course_lib.turtlesim_view), whose address it pr
 """
 
 import threading
+import time
 
 from rcl_interfaces.msg import IntegerRange, ParameterDescriptor, ParameterEvent
 import rclpy
@@ -131,6 +132,19 @@ class Turtlesim(Node):
             return window_scene(self.background(), self.canvas, self.turtles.values())
 
 
+def _shut_down_by_ctrl_c():
+    """Return True if rclpy's signal thread shuts the context down within a second.
+
+    Ctrl-C raises in whatever the main thread runs, also inside rclpy's own code (turning a
+    message into Python), which then fails with some other error before that thread, which
+    needs the GIL, has shut the context down.
+    """
+    deadline = time.monotonic() + 1.0
+    while rclpy.ok() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    return not rclpy.ok()
+
+
 def main(args=None):
     rclpy.init(args=args)
     window = open_window()  # its address first, as the real window shows before the node logs
@@ -142,7 +156,7 @@ def main(args=None):
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception as error:
-        if rclpy.ok():
+        if not _shut_down_by_ctrl_c():
             raise
         # Ctrl-C: rclpy's signal thread shut the context down under a running callback
         node.get_logger().debug(f'Ctrl-C ended a running callback: {error!r}')

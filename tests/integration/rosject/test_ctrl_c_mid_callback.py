@@ -6,6 +6,12 @@ while the main thread may be running a callback. A `publish` in that callback th
 exit code 1 and a traceback (turtlesim_node in a tutorial's terminal, descriptor_vel in lesson
 11; under load, 8 of 52 Ctrl-C stops of turtlesim_node). Here a timer added to each node does
 what that thread does, at the worst moment: it shuts the context down, then publishes.
+
+Ctrl-C may also land while rclpy turns a message it takes into Python: the KeyboardInterrupt
+raised there comes out of `take_message` as "RuntimeError: Unable to convert call argument
+'0' to Python object", before that thread (which needs the GIL) has shut anything down
+(turtlesim_node, 1 of 20-40 Ctrl-C stops under a flood of messages; none of 60 since the
+nodes wait up to a second for that thread).
 """
 
 from __future__ import annotations
@@ -47,6 +53,41 @@ sys.argv[1:] = ['--ros-args', '--log-level', sys.argv[3] + ':=debug']  # the nod
 sys.exit(module.main())
 """
 
+# Runs a node's own main(), with a probe message that Ctrl-C interrupts while rclpy builds it;
+# rclpy's signal thread shuts the context down 0.2 s later (it is a race: here, a late one).
+CTRL_C_MID_TAKE = """
+import importlib, os, sys, threading
+from std_msgs.msg import String
+
+silent, kept_open = os.pipe()  # a stdin that stays quiet (the teleop loop waits on keys)
+os.dup2(silent, 0)
+
+module = importlib.import_module(sys.argv[1])
+node_class = getattr(module, sys.argv[2])
+build = node_class.__init__
+build_string = String.__init__
+nodes = []
+
+def build_string_with_ctrl_c(self, *args, **kwargs):
+    build_string(self, *args, **kwargs)
+    if sys._getframe(1).f_code.co_name == '_take_subscription':  # rclpy takes the probe's
+        print('Ctrl-C while rclpy takes a message', flush=True)
+        threading.Timer(0.2, nodes[0].context.try_shutdown).start()  # rclpy's signal thread
+        raise KeyboardInterrupt  # what Python's SIGINT handler raises where the signal lands
+
+def build_with_probe(self, *args, **kwargs):
+    build(self, *args, **kwargs)
+    nodes.append(self)
+    probe = self.create_publisher(String, 'ctrl_c_probe', 1)
+    self.create_subscription(String, 'ctrl_c_probe', lambda message: None, 1)
+    self.create_timer(0.3, lambda: probe.publish(String(data='probe')))
+
+String.__init__ = build_string_with_ctrl_c
+node_class.__init__ = build_with_probe
+sys.argv[1:] = ['--ros-args', '--log-level', sys.argv[3] + ':=debug']  # the node's own log only
+sys.exit(module.main())
+"""
+
 NODES = {  # executable: (module, node class, node name)
     "param_vel": ("parameter_tests.parameter_tests_node", "VelParam", "param_vel_node"),
     "descriptor_vel": (
@@ -82,3 +123,17 @@ def test_a_shutdown_under_a_running_callback_ends_the_node_cleanly(
     assert 'Ctrl-C ended a running callback: RCLError("Failed to publish:' in node.text(), (
         node.text()
     )
+
+
+@pytest.mark.parametrize("name", list(NODES))
+def test_ctrl_c_while_rclpy_takes_a_message_ends_the_node_cleanly(
+    session: Session, name: str
+) -> None:
+    module, node_class, node_name = NODES[name]
+    node = session.spawn(
+        [sys.executable, "-c", CTRL_C_MID_TAKE, module, node_class, node_name], name=name
+    )
+    assert node.wait_for_line("Ctrl-C while rclpy takes", 30.0) is not None, node.text()
+    code = node.wait(30.0)
+    assert (code, "Traceback" in node.text()) == (0, False), node.text()
+    assert "Ctrl-C ended a running callback: RuntimeError(" in node.text(), node.text()
