@@ -48,6 +48,8 @@ from bench._capacity_report import (
     Round,
     Usage,
     judge,
+    kept_attempt,
+    measure_again,
     print_class,
     print_processes,
     print_round,
@@ -271,6 +273,7 @@ def drive_round(
         for learner in learners
     ]
     time.sleep(max(0.0, t0 - time.time()))
+    bench_late = max(0.0, time.time() - t0)
     own = os.getpid()
     roots = {learner.number: tree_pids(learner.roots) for learner in [*learners, *idle]}
     roots[HUB] = list(hub)
@@ -324,7 +327,17 @@ def drive_round(
     learners_cpu += sum(used.values())
     hub_usage = Usage(_usage(roots[HUB], used, pss[HUB], labels, elapsed)) if hub else None
     others = busy - (learners_cpu + bench_cpu) / elapsed
-    result = Round(figures, elapsed, busy, others, load, mem_used, idle=idle_usage, hub=hub_usage)
+    result = Round(
+        figures,
+        elapsed,
+        busy,
+        others,
+        load,
+        mem_used,
+        idle=idle_usage,
+        hub=hub_usage,
+        bench_late_s=bench_late,
+    )
     result.failures = judge(figures)
     return result
 
@@ -414,12 +427,13 @@ def main() -> None:
                     drive_round(learners, args.window, args.gets, in_step=args.in_step, idle=idle)
                 )
                 print_round(attempts[-1])
-                if not attempts[-1].failures or attempts[-1].others_cores <= args.others:
+                why = measure_again(attempts[-1], args.others)
+                if why is None:
                     break
                 if attempt < ATTEMPTS:
-                    print(f"  others used {attempts[-1].others_cores:.2f} cores: measured again")
+                    print(f"  {why}: measured again")
                     wait_for_quiet(args.others)
-            rounds.append(min(attempts, key=lambda r: (len(r.failures), r.others_cores)))
+            rounds.append(min(attempts, key=kept_attempt))
             if len(attempts) > 1:
                 print(f"  N = {n}: kept the attempt with others at {rounds[-1].others_cores:.2f}")
             print_processes(rounds[-1])
