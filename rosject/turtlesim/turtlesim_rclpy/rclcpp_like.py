@@ -1,6 +1,10 @@
-"""What an rclcpp node has that an rclpy node lacks: the parameter-events QoS parameters."""
+"""What an rclcpp node has that an rclpy node lacks: the parameter-events QoS parameters, and
+a clean end on Ctrl-C whatever the node was doing."""
+
+import time
 
 from rcl_interfaces.msg import ParameterDescriptor
+import rclpy
 
 # rclcpp nodes declare these read-only parameters for their /parameter_events publisher; rclpy
 # nodes do not, so the stand-in declares them with rclcpp's values and descriptions.
@@ -26,3 +30,16 @@ def declare_parameter_events_qos(node):
                 read_only=True,
             ),
         )
+
+
+def shut_down_by_ctrl_c():
+    """Return True if rclpy's signal thread shuts the context down within a second.
+
+    Ctrl-C raises in whatever the main thread runs, also inside rclpy's own code (turning a
+    message into Python), which then fails with some other error before that thread, which
+    needs the GIL, has shut the context down.
+    """
+    deadline = time.monotonic() + 1.0
+    while rclpy.ok() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    return not rclpy.ok()

@@ -4,7 +4,6 @@ import os
 import select
 import sys
 import termios
-import time
 import tty
 
 from geometry_msgs.msg import Twist
@@ -14,7 +13,7 @@ from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from turtlesim.action import RotateAbsolute
 
-from .rclcpp_like import declare_parameter_events_qos
+from .rclcpp_like import declare_parameter_events_qos, shut_down_by_ctrl_c
 
 ARROWS = {'A': (1.0, 0.0), 'B': (-1.0, 0.0), 'C': (0.0, -1.0), 'D': (0.0, 1.0)}
 # The absolute headings (rad) of the rotation keys, as the real teleop sends them.
@@ -75,18 +74,6 @@ def _key_loop(node, fd):
         rclpy.spin_once(node, timeout_sec=0)
 
 
-def _shut_down_by_ctrl_c():
-    """Return True if rclpy's signal thread shuts the context down within a second.
-
-    Ctrl-C raises in whatever the main thread runs, also inside rclpy's own code (turning a
-    message into Python), which then fails with some other error before that thread, which
-    needs the GIL, has shut the context down.
-    """
-    deadline = time.monotonic() + 1.0
-    while rclpy.ok() and time.monotonic() < deadline:
-        time.sleep(0.01)
-    return not rclpy.ok()
-
 
 def main(args=None):
     rclpy.init(args=args)
@@ -102,7 +89,7 @@ def main(args=None):
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception as error:
-        if not _shut_down_by_ctrl_c():
+        if not shut_down_by_ctrl_c():
             raise
         # Ctrl-C: rclpy's signal thread shut the context down under a running callback
         node.get_logger().debug(f'Ctrl-C ended a running callback: {error!r}')

@@ -6,7 +6,6 @@ window is a page in the browser (course_lib.turtlesim_view), whose address it pr
 """
 
 import threading
-import time
 
 from rcl_interfaces.msg import IntegerRange, ParameterDescriptor, ParameterEvent
 import rclpy
@@ -18,7 +17,7 @@ from turtlesim.srv import Kill, Spawn
 
 from .canvas import Canvas
 from .kinematics import STEP_NS, steps_due, UPDATE_PERIOD, WORLD_SIZE
-from .rclcpp_like import declare_parameter_events_qos
+from .rclcpp_like import declare_parameter_events_qos, shut_down_by_ctrl_c
 from .turtle import TurtleInterfaces
 from .window import open_window, window_scene
 
@@ -132,18 +131,6 @@ class Turtlesim(Node):
             return window_scene(self.background(), self.canvas, self.turtles.values())
 
 
-def _shut_down_by_ctrl_c():
-    """Return True if rclpy's signal thread shuts the context down within a second.
-
-    Ctrl-C raises in whatever the main thread runs, also inside rclpy's own code (turning a
-    message into Python), which then fails with some other error before that thread, which
-    needs the GIL, has shut the context down.
-    """
-    deadline = time.monotonic() + 1.0
-    while rclpy.ok() and time.monotonic() < deadline:
-        time.sleep(0.01)
-    return not rclpy.ok()
-
 
 def main(args=None):
     rclpy.init(args=args)
@@ -156,7 +143,7 @@ def main(args=None):
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception as error:
-        if not _shut_down_by_ctrl_c():
+        if not shut_down_by_ctrl_c():
             raise
         # Ctrl-C: rclpy's signal thread shut the context down under a running callback
         node.get_logger().debug(f'Ctrl-C ended a running callback: {error!r}')

@@ -25,10 +25,9 @@ from course_lib.session.session import Session, get_session
 
 pytestmark = [pytest.mark.ros]
 
-# Runs a node's own main(), with a timer that shuts the context down under its own publish.
-SHUT_DOWN_MID_PUBLISH = """
-import importlib, os, sys
-from std_msgs.msg import Empty
+# Each program runs a node's own main() with a probe added to the node (`add_probe(node)`).
+_NODE = """
+import importlib, os, sys, threading
 
 silent, kept_open = os.pipe()  # a stdin that stays quiet (the teleop loop waits on keys)
 os.dup2(silent, 0)
@@ -36,35 +35,43 @@ os.dup2(silent, 0)
 module = importlib.import_module(sys.argv[1])
 node_class = getattr(module, sys.argv[2])
 build = node_class.__init__
-
+"""
+_MAIN = """
 def build_with_probe(self, *args, **kwargs):
     build(self, *args, **kwargs)
-    probe = self.create_publisher(Empty, 'ctrl_c_probe', 1)
-
-    def ctrl_c_mid_publish():
-        print('Shutting the context down under a publish', flush=True)
-        self.context.shutdown()  # what rclpy's signal thread does on Ctrl-C
-        probe.publish(Empty())
-
-    self.create_timer(0.3, ctrl_c_mid_publish)
+    add_probe(self)
 
 node_class.__init__ = build_with_probe
 sys.argv[1:] = ['--ros-args', '--log-level', sys.argv[3] + ':=debug']  # the node's own log only
 sys.exit(module.main())
 """
 
-# Runs a node's own main(), with a probe message that Ctrl-C interrupts while rclpy builds it;
-# rclpy's signal thread shuts the context down 0.2 s later (it is a race: here, a late one).
-CTRL_C_MID_TAKE = """
-import importlib, os, sys, threading
+
+def _program(probe: str) -> str:
+    """Return a program that runs a node's main() with the probe `probe` defines."""
+    return _NODE + probe + _MAIN
+
+
+# A timer that shuts the context down under its own publish.
+SHUT_DOWN_MID_PUBLISH = _program("""
+from std_msgs.msg import Empty
+
+def add_probe(node):
+    probe = node.create_publisher(Empty, 'ctrl_c_probe', 1)
+
+    def ctrl_c_mid_publish():
+        print('Shutting the context down under a publish', flush=True)
+        node.context.shutdown()  # what rclpy's signal thread does on Ctrl-C
+        probe.publish(Empty())
+
+    node.create_timer(0.3, ctrl_c_mid_publish)
+""")
+
+# A probe message that Ctrl-C interrupts while rclpy builds it; rclpy's signal thread shuts
+# the context down 0.2 s later (it is a race: here, a late one).
+CTRL_C_MID_TAKE = _program("""
 from std_msgs.msg import String
 
-silent, kept_open = os.pipe()  # a stdin that stays quiet (the teleop loop waits on keys)
-os.dup2(silent, 0)
-
-module = importlib.import_module(sys.argv[1])
-node_class = getattr(module, sys.argv[2])
-build = node_class.__init__
 build_string = String.__init__
 nodes = []
 
@@ -75,18 +82,14 @@ def build_string_with_ctrl_c(self, *args, **kwargs):
         threading.Timer(0.2, nodes[0].context.try_shutdown).start()  # rclpy's signal thread
         raise KeyboardInterrupt  # what Python's SIGINT handler raises where the signal lands
 
-def build_with_probe(self, *args, **kwargs):
-    build(self, *args, **kwargs)
-    nodes.append(self)
-    probe = self.create_publisher(String, 'ctrl_c_probe', 1)
-    self.create_subscription(String, 'ctrl_c_probe', lambda message: None, 1)
-    self.create_timer(0.3, lambda: probe.publish(String(data='probe')))
-
 String.__init__ = build_string_with_ctrl_c
-node_class.__init__ = build_with_probe
-sys.argv[1:] = ['--ros-args', '--log-level', sys.argv[3] + ':=debug']  # the node's own log only
-sys.exit(module.main())
-"""
+
+def add_probe(node):
+    nodes.append(node)
+    probe = node.create_publisher(String, 'ctrl_c_probe', 1)
+    node.create_subscription(String, 'ctrl_c_probe', lambda message: None, 1)
+    node.create_timer(0.3, lambda: probe.publish(String(data='probe')))
+""")
 
 NODES = {  # executable: (module, node class, node name)
     "param_vel": ("parameter_tests.parameter_tests_node", "VelParam", "param_vel_node"),
@@ -108,32 +111,29 @@ def session() -> Iterator[Session]:
     session.close()
 
 
-@pytest.mark.parametrize("name", list(NODES))
-def test_a_shutdown_under_a_running_callback_ends_the_node_cleanly(
-    session: Session, name: str
-) -> None:
-    module, node_class, node_name = NODES[name]
-    node = session.spawn(
-        [sys.executable, "-c", SHUT_DOWN_MID_PUBLISH, module, node_class, node_name], name=name
-    )
-    assert node.wait_for_line("Shutting the context down", 30.0) is not None, node.text()
-    code = node.wait(30.0)
-    assert (code, "Traceback" in node.text()) == (0, False), node.text()
-    # what it caught is in its debug log
-    assert 'Ctrl-C ended a running callback: RCLError("Failed to publish:' in node.text(), (
-        node.text()
-    )
+CASES = {  # what the probe does: (its program, the line it prints, what the node then logs)
+    "shutdown mid publish": (
+        SHUT_DOWN_MID_PUBLISH,
+        "Shutting the context down",
+        'Ctrl-C ended a running callback: RCLError("Failed to publish:',
+    ),
+    "Ctrl-C mid take": (
+        CTRL_C_MID_TAKE,
+        "Ctrl-C while rclpy takes",
+        "Ctrl-C ended a running callback: RuntimeError(",
+    ),
+}
 
 
+@pytest.mark.parametrize("case", list(CASES))
 @pytest.mark.parametrize("name", list(NODES))
-def test_ctrl_c_while_rclpy_takes_a_message_ends_the_node_cleanly(
-    session: Session, name: str
+def test_ctrl_c_under_a_running_callback_ends_the_node_cleanly(
+    session: Session, name: str, case: str
 ) -> None:
     module, node_class, node_name = NODES[name]
-    node = session.spawn(
-        [sys.executable, "-c", CTRL_C_MID_TAKE, module, node_class, node_name], name=name
-    )
-    assert node.wait_for_line("Ctrl-C while rclpy takes", 30.0) is not None, node.text()
+    program, probe_line, caught = CASES[case]
+    node = session.spawn([sys.executable, "-c", program, module, node_class, node_name], name=name)
+    assert node.wait_for_line(probe_line, 30.0) is not None, node.text()
     code = node.wait(30.0)
     assert (code, "Traceback" in node.text()) == (0, False), node.text()
-    assert "Ctrl-C ended a running callback: RuntimeError(" in node.text(), node.text()
+    assert caught in node.text(), node.text()  # what it caught is in its debug log
