@@ -104,6 +104,30 @@ def _drain(stream: IO[str], log: list[str]) -> None:
         del log[:-200]
 
 
+def _running(process: psutil.Process) -> bool:
+    """Return True if `process` still runs (a zombie has ended)."""
+    try:
+        return process.is_running() and process.status() != psutil.STATUS_ZOMBIE
+    except psutil.Error:
+        return False
+
+
+def _end_leftovers(tree: list[psutil.Process], log: list[str], patience_s: float = 15.0) -> None:
+    """Kill what the stopped hub left of its processes, and say so with the hub's last words
+    (two JupyterHubs of 16-learner runs outlived their launcher, idle, for 20 minutes)."""
+    deadline = time.monotonic() + patience_s
+    while left := [p for p in tree if _running(p)]:
+        if time.monotonic() > deadline:
+            commands = [" ".join(p.cmdline())[:100] for p in left]
+            print(f"the stopped hub left {len(left)} processes: {commands}", file=sys.stderr)
+            print("its log ended with:\n" + "".join(log[-40:]), file=sys.stderr)
+            for leftover in left:
+                with contextlib.suppress(psutil.Error):
+                    leftover.kill()
+            return
+        time.sleep(0.2)
+
+
 @dataclass
 class Hub:
     """A running class hub: its launcher process, address, start time and the passwords."""
@@ -163,11 +187,16 @@ def running_hub(
             {name: password.strip() for name, password in passwords.items()},
         )
     finally:
+        tree: list[psutil.Process] = []
+        with contextlib.suppress(psutil.Error):
+            tree = psutil.Process(process.pid).children(recursive=True)
         process.send_signal(signal.SIGINT)
         try:
             process.wait(120)
         except subprocess.TimeoutExpired:
+            log.append("the launcher did not stop within 120 s of Ctrl-C: killed\n")
             process.kill()
             process.wait()
+        _end_leftovers(tree, log)
         for name in (*learners, ADMIN):
             remove_account(name)

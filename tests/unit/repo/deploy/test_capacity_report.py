@@ -1,4 +1,4 @@
-"""The class bench's pure parts: real-time factor, percentile, goals, requests, N steps."""
+"""The class benches' parts: real-time factor, percentile, goals, requests, N steps, clean-up."""
 
 from __future__ import annotations
 
@@ -200,3 +200,23 @@ def test_of_equally_failed_attempts_the_one_begun_on_time_is_kept() -> None:
     on_time = _round(failures=["p99"], others=0.3)
     assert min([late, on_time], key=kept_attempt) is on_time
     assert min([late, _round(failures=[])], key=kept_attempt).failures == []
+
+
+def test_the_hub_bench_ends_and_names_what_a_stopped_hub_left_running(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    import subprocess
+    import sys
+
+    import psutil
+
+    from bench._hub import _end_leftovers
+
+    leftover = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    try:
+        _end_leftovers([psutil.Process(leftover.pid)], ["the hub's last line\n"], patience_s=0.5)
+        assert leftover.wait(5) != 0  # killed
+    finally:
+        leftover.kill()
+    said = capsys.readouterr().err
+    assert "the stopped hub left 1 processes" in said and "the hub's last line" in said
