@@ -30,12 +30,7 @@ class VelParam(Node):
 
 
 def _shut_down_by_ctrl_c():
-    """Return True if rclpy's signal thread shuts the context down within a second.
-
-    Ctrl-C raises in whatever the main thread runs, also inside rclpy's own code (turning a
-    message into Python), which then fails with some other error before that thread, which
-    needs the GIL, has shut the context down.
-    """
+    """Return True once Ctrl-C has shut rclpy down (its signal thread may lag a moment)."""
     deadline = time.monotonic() + 1.0
     while rclpy.ok() and time.monotonic() < deadline:
         time.sleep(0.01)
