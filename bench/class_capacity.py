@@ -36,6 +36,7 @@ import os
 import signal
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -342,6 +343,26 @@ def drive_round(
     return result
 
 
+def measured_round(drive: Callable[[], Round], others_limit: float) -> Round:
+    """Drive one round and print it; measure it again (up to ATTEMPTS) while its failures may
+    not be the class's own (`measure_again`); print and return the attempt kept."""
+    attempts: list[Round] = []
+    for attempt in range(1, ATTEMPTS + 1):
+        attempts.append(drive())
+        print_round(attempts[-1])
+        why = measure_again(attempts[-1], others_limit)
+        if why is None:
+            break
+        if attempt < ATTEMPTS:
+            print(f"  {why}: measured again")
+            wait_for_quiet(others_limit)
+    kept = min(attempts, key=kept_attempt)
+    if len(attempts) > 1:
+        print(f"  N = {kept.n}: kept the attempt with others at {kept.others_cores:.2f}")
+    print_processes(kept)
+    return kept
+
+
 def wait_for_quiet(limit: float, patience_s: float = 60.0) -> None:
     """Wait (up to `patience_s`) until processes outside the bench use under `limit` cores."""
     deadline = time.monotonic() + patience_s
@@ -421,22 +442,14 @@ def main() -> None:
         for n in sizes(args.max):
             while len(learners) < n:
                 learners.append(add_learner(len(learners) + 1, views))
-            attempts: list[Round] = []
-            for attempt in range(1, ATTEMPTS + 1):
-                attempts.append(
-                    drive_round(learners, args.window, args.gets, in_step=args.in_step, idle=idle)
+            rounds.append(
+                measured_round(
+                    lambda: drive_round(
+                        learners, args.window, args.gets, in_step=args.in_step, idle=idle
+                    ),
+                    args.others,
                 )
-                print_round(attempts[-1])
-                why = measure_again(attempts[-1], args.others)
-                if why is None:
-                    break
-                if attempt < ATTEMPTS:
-                    print(f"  {why}: measured again")
-                    wait_for_quiet(args.others)
-            rounds.append(min(attempts, key=kept_attempt))
-            if len(attempts) > 1:
-                print(f"  N = {n}: kept the attempt with others at {rounds[-1].others_cores:.2f}")
-            print_processes(rounds[-1])
+            )
             if rounds[-1].failures and not (args.keep_going and rounds[-1].rtf_min >= RTF_GOAL):
                 break
     finally:

@@ -22,6 +22,7 @@ import sys
 import tempfile
 import time
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -31,10 +32,6 @@ from bench import _capacity_kernel
 from bench._capacity_report import (
     Round,
     hub_summary,
-    kept_attempt,
-    measure_again,
-    print_processes,
-    print_round,
     record_hub,
 )
 from bench._hub import (
@@ -47,14 +44,7 @@ from bench._hub import (
 )
 from bench._hub_kernel import HubKernel
 from bench._labs import tree_pids
-from bench.class_capacity import (
-    ATTEMPTS,
-    OTHERS_LIMIT,
-    SETUP,
-    Views,
-    drive_round,
-    wait_for_quiet,
-)
+from bench.class_capacity import OTHERS_LIMIT, SETUP, Views, drive_round, measured_round
 
 # The learner's copy of the course has no bench/: the drive's code goes to the kernel first.
 _INSTALL_DRIVE = """\
@@ -171,18 +161,8 @@ def main() -> int:
                     while len(learners) < n:
                         learners.append(add_learner(hub, len(learners) + 1, views))
                     own = hub_processes(hub, learners)
-                    attempts: list[Round] = []
-                    for attempt in range(1, ATTEMPTS + 1):
-                        attempts.append(drive_round(learners, args.window, args.gets, hub=own))
-                        print_round(attempts[-1])
-                        why = measure_again(attempts[-1], OTHERS_LIMIT)
-                        if why is None:
-                            break
-                        if attempt < ATTEMPTS:
-                            print(f"  {why}: measured again")
-                            wait_for_quiet(OTHERS_LIMIT)
-                    rounds.append(min(attempts, key=kept_attempt))
-                    print_processes(rounds[-1])
+                    drive = partial(drive_round, learners, args.window, args.gets, hub=own)
+                    rounds.append(measured_round(drive, OTHERS_LIMIT))
             finally:
                 views.stop()
                 for learner in reversed(learners):

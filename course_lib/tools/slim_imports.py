@@ -99,7 +99,7 @@ _ALL = {"rosidl_generator_py": ["import_type_support", "generate_py"]}
 _INTERFACE_KINDS = ("msg", "srv", "action")
 _GENERATED_SUFFIX = "  # noqa: F401"
 # How rosidl_generator_py imports numpy for a fixed-size array member (its `_idl.py.em`).
-_GENERATED_NUMPY_IMPORT = "\nimport numpy  # noqa: E402, I100\n"
+_GENERATED_NUMPY_IMPORT = "import numpy  # noqa: E402, I100\n"
 
 
 def _interface_bindings(fullname: str, init_file: str) -> dict[str, _Binding] | None:
@@ -238,36 +238,45 @@ class _OnFirstUseLoader(Loader):
         exec(compile(tree, self._path, "exec"), namespace)
 
 
-def _on_first_use_spec(
-    fullname: str, path: Sequence[str] | None, names: tuple[str, ...]
+def _on_first_use(
+    spec: importlib.machinery.ModuleSpec | None, names: tuple[str, ...]
 ) -> importlib.machinery.ModuleSpec | None:
-    """Return the module's spec with the loader above, if it imports one of `names` that is
-    not loaded yet (as found: None lets the next finder look)."""
-    spec = importlib.machinery.PathFinder.find_spec(fullname, path)
-    if spec is None or not (spec.origin or "").endswith(".py"):
-        return spec
+    """Give `spec` the loader above if its module (source) would load one of `names` that is
+    not loaded yet; return it (None: not found here, the next finder looks)."""
     waiting = tuple(name for name in names if name not in sys.modules)
-    if waiting:
+    if spec is not None and waiting and (spec.origin or "").endswith(".py"):
         spec.loader = _OnFirstUseLoader(spec.origin or "", waiting)
     return spec
+
+
+def _imports_numpy_for_an_array(path: str) -> bool:
+    """Return True if a generated interface module imports numpy (its imports come before
+    its first class: only those lines are read, not the whole module)."""
+    try:
+        with open(path, encoding="utf-8") as file:
+            for line in file:
+                if line.startswith("class "):
+                    return False
+                if line == _GENERATED_NUMPY_IMPORT:
+                    return True
+    except OSError:
+        pass
+    return False
 
 
 def _interface_module_spec(
     fullname: str, path: Sequence[str] | None
 ) -> importlib.machinery.ModuleSpec | None:
-    """Return a generated interface module's spec: numpy on first use if its source imports it
-    for a fixed-size array (None: not found here, the next finder looks)."""
+    """Return a generated interface module's spec: numpy on first use if it imports numpy for
+    a fixed-size array (None: not found here, the next finder looks)."""
     spec = importlib.machinery.PathFinder.find_spec(fullname, path)
-    if spec is None or "numpy" in sys.modules or not (spec.origin or "").endswith(".py"):
+    if (
+        spec is None
+        or "numpy" in sys.modules
+        or not _imports_numpy_for_an_array(spec.origin or "")
+    ):
         return spec
-    try:
-        with open(spec.origin or "", encoding="utf-8") as file:
-            imports_numpy = _GENERATED_NUMPY_IMPORT in file.read()
-    except OSError:
-        return spec
-    if imports_numpy:
-        spec.loader = _OnFirstUseLoader(spec.origin or "", ("numpy",))
-    return spec
+    return _on_first_use(spec, ("numpy",))
 
 
 def _is_interface_module(fullname: str) -> bool:
@@ -295,7 +304,8 @@ class _Finder:
         if _is_interface_module(fullname):
             return _interface_module_spec(fullname, path)
         if fullname in ON_FIRST_USE:
-            return _on_first_use_spec(fullname, path, ON_FIRST_USE[fullname])
+            spec = importlib.machinery.PathFinder.find_spec(fullname, path)
+            return _on_first_use(spec, ON_FIRST_USE[fullname])
         interface = fullname.count(".") == 1 and fullname.rpartition(".")[2] in _INTERFACE_KINDS
         if not interface and fullname not in SLIM_PACKAGES:
             return None

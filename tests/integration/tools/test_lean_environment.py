@@ -180,6 +180,8 @@ def test_a_generated_module_keeps_its_line_numbers() -> None:
     program = """
 import traceback
 from geometry_msgs.msg import PoseWithCovariance
+import geometry_msgs.msg._pose_with_covariance as module
+assert type(module.__spec__.loader).__name__ == "_OnFirstUseLoader"  # the module rewritten
 try:
     PoseWithCovariance(covariance=["not a number"] * 36)
 except ValueError:
