@@ -4,17 +4,16 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import os
 import signal
 import sys
 import time
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from ..config.simulation import SimulationSettings, load_simulation_settings
 from ..core.errors import CourseError
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # the lab's service imports READY_TEXT: it never reads the settings (YAML)
+    from ..config.simulation import SimulationSettings
     from ..viz.server import ThreadedServer
 
 __all__ = ["READY_TEXT", "main", "parse_args"]
@@ -51,6 +50,8 @@ def parse_args(argv: Sequence[str]) -> argparse.Namespace:
 
 
 def _settings(args: argparse.Namespace) -> SimulationSettings:
+    from ..config.simulation import load_simulation_settings
+
     settings = load_simulation_settings(args.config)
     if args.real_time_factor is not None:
         import dataclasses
@@ -75,7 +76,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except CourseError as err:
         print(err, file=sys.stderr, flush=True)
         return 2
-    os.environ.setdefault("MUJOCO_GL", "egl")  # headless offscreen camera; read at import
+    from .world import gl_backend
+
+    gl_backend.defer("egl")  # headless offscreen camera, loaded with the camera's first frame
     from .ros.bridge import Bridge
     from .view.live import LiveView
     from .world.physics import Simulation

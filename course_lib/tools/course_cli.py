@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -22,10 +23,41 @@ def _build(args: argparse.Namespace) -> int:
 
 def _lab(args: argparse.Namespace) -> int:
     from ..lab.jupyterlab import run_lab
-    from .config_check import require_valid_config
 
-    require_valid_config()  # a broken config/ stops the lab before JupyterLab starts
-    return run_lab(args.extra)
+    checked = _check_config_in_child()  # a broken config/ stops the lab before JupyterLab starts
+    return checked or run_lab(args.extra)
+
+
+def _check_config_in_child() -> int:
+    """Check config/ in a forked child; return its exit code (1: broken, said on stderr).
+
+    The lab's process lives as long as the lab: the checker's modules (YAML schemas, lesson
+    texts, package metadata) would stay in it, about 4 MiB a learner.
+    """
+    sys.stdout.flush()
+    sys.stderr.flush()
+    pid = os.fork()
+    if pid == 0:  # the child: check, say what is wrong, and leave without Python's exit
+        code = 1
+        try:
+            from ..core.errors import CourseError
+            from .config_check import require_valid_config
+
+            try:
+                require_valid_config()
+                code = 0
+            except CourseError as exc:
+                print(exc, file=sys.stderr)
+        except BaseException:  # a child must never return into the parent's code
+            import traceback
+
+            traceback.print_exc()
+        finally:
+            sys.stdout.flush()
+            sys.stderr.flush()
+            os._exit(code)
+    _, status = os.waitpid(pid, 0)
+    return os.waitstatus_to_exitcode(status) and 1
 
 
 def _hub(args: argparse.Namespace) -> int:

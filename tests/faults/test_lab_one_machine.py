@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
 from jupyter_kernels import Kernel, describe, pid_alive, wait_gone
@@ -87,6 +88,14 @@ def test_a_crashed_lab_world_is_restarted_in_place(lab_kernel) -> None:
     # The learner's own `world.stop()` stops the lab's world, as lesson 3 says.
     kernel.ok("world.stop()")
     assert wait_gone([restarted, viewer], 10.0) == []
+
+
+def test_the_labs_own_process_never_loads_the_config_checker(lab_kernel, lab: LabServer) -> None:
+    """The lab's process lives as long as the lab: it checks config/ in a child it forks and
+    starts the world without reading YAML itself (4 MiB a learner; PyYAML is the checker's)."""
+    kernel = lab_kernel()
+    kernel.ok("from course_lib.lessons import start\nlesson = start(3)\nworld = lesson.world()")
+    assert "/_yaml." not in Path(f"/proc/{lab.process.pid}/maps").read_text()
 
 
 def test_the_lab_stores_no_live_output(lab: LabServer) -> None:

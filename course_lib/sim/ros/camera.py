@@ -15,6 +15,7 @@ import numpy as np
 from sensor_msgs.msg import CameraInfo, Image
 
 from ...config.simulation import Camera
+from ..world import gl_backend
 from .messages import to_stamp
 
 __all__ = ["CAMERA_NAME", "CameraStream", "camera_info"]
@@ -92,7 +93,7 @@ class CameraStream:
                     self._request = None
                 if renderer is None:  # the first subscriber pays EGL's start-up (about 2 s)
                     size = (self.settings.height_px, self.settings.width_px)
-                    renderer = mujoco.Renderer(self.model, *size)
+                    renderer = gl_backend.renderer(self.model, *size)
                 self._publish(renderer, sim_time, qpos)
         except Exception as err:  # no EGL here: say so once, keep the world running
             self.failed = True

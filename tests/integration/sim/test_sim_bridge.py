@@ -175,12 +175,19 @@ def test_recording_a_run_gives_a_replay(fresh: World, tmp_path: Path) -> None:
     assert recorder.frames[-1].qpos[0] > recorder.frames[0].qpos[0]
 
 
+def _loads_egl(pid: int) -> bool:
+    return "libEGL" in Path(f"/proc/{pid}/maps").read_text()
+
+
 def test_camera_renders_the_box_ahead(session: Session, fresh: World) -> None:
+    """The world loads OpenGL (EGL) with the camera's first subscriber, not before."""
     import numpy as np
     from sensor_msgs.msg import Image
 
+    assert not _loads_egl(fresh.process.pid), "EGL loaded before anyone asked for a frame"
     latest = _last_message(session, Image, "/camera/image_raw")
     image = _wait_until(latest, timeout=20.0)
+    assert _loads_egl(fresh.process.pid)
     assert (image.width, image.height, image.encoding) == (320, 240, "rgb8")
     pixels = np.frombuffer(bytes(image.data), dtype=np.uint8).reshape(240, 320, 3)
     red, green, blue = (int(c) for c in pixels[100, 160])
