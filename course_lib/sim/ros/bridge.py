@@ -57,9 +57,11 @@ _log = logging.getLogger(__name__)
 # from every entity of its nodes at each wake (nine nodes' parameter services, in Python), so
 # this node waits in an executor and thread of its own: 0.019 -> 0.008 cores while driving.
 _DRIVE_NODE = "turtlebot3_diff_drive"
-# A world at rest sleeps through the points nobody reads (Bridge._doze), at most this long:
-# the course's samples come every BATCH_S (0.1 s), or every REST_BATCH_S once the robot has
-# rested REST_S. The pacer does not count a doze's lag as falling behind (its slack).
+# The loop sleeps through the points nobody reads (Bridge._doze), at most this long: the
+# course's samples come every BATCH_S (0.1 s), or every REST_BATCH_S once the robot has rested
+# REST_S; a moving robot that a 3D view shows wakes for each of the view's frames. A wake costs
+# the world about 0.5 ms here, whatever it does: 50 a second were a third of a driving world's
+# CPU. The pacer does not count a doze's lag as falling behind (its slack).
 _DOZE_S = 0.1
 _REST_DOZE_S = REST_BATCH_S
 
@@ -91,6 +93,7 @@ class Bridge:
         self._fresh_until = 0.0  # a reader asked for fresh samples: BATCH_S ones until then
         self._doze_slack = 0.0  # the lag (s) of the doze being caught up
         self.pacer = Pacer(settings.real_time_factor)
+        self._view_period_s = 1.0 / settings.rates.viewer_hz
         self.paused = False
         self._inputs: collections.deque[tuple[str, Any]] = collections.deque()
         self._wake = threading.Event()
@@ -323,19 +326,24 @@ class Bridge:
     def _doze(self, schedule: Schedule) -> int:
         """Return how many steps the loop may sleep through (0: wake at the next point).
 
-        While the robot rests (sim.advance skips its physics) and nothing that is read falls
-        due, the points in between publish nothing: the loop sleeps until the one before the
-        next that is read, then takes them back to back, so each message leaves when it
-        would have. A new command or a reset wakes it early (it catches up first).
+        While nothing that is read falls due (no ROS reader of the world's streams: the
+        course's own samples go out in batches), the points in between publish nothing: the
+        loop sleeps until the one before the next that is read, then takes them back to back
+        (stepping the physics of a moving robot), so each message leaves when it would have.
+        A new command or a reset wakes it early (it catches up first). A moving robot that a
+        3D view shows wakes for each of the view's frames.
         """
         camera = self.camera is not None and self.camera.wanted
-        if not self.sim.still or self.paused or camera or self.pacer.real_time_factor <= 0:
+        if self.paused or camera or self.pacer.real_time_factor <= 0:
             return 0
         self._dozing = True  # before looking at the inputs: a command from now on wakes us
         if self._inputs:
             self._dozing = False
             return 0
-        limit = round((_REST_DOZE_S if self._resting() else _DOZE_S) / self.sim.timestep)
+        seconds = _REST_DOZE_S if self._resting() else _DOZE_S
+        if not self.sim.still and self.viewer is not None and self.viewer.watchers:
+            seconds = min(seconds, self._view_period_s)
+        limit = round(seconds / self.sim.timestep)
         read = [name for name, pub in self.pub.items() if pub.get_subscription_count()]
         due = [schedule.steps_until(read) if read else limit]
         if self._samples.get_subscription_count():
