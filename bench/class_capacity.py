@@ -1,6 +1,6 @@
 """How many learners one host holds: N labs, each running lesson 7's drive at the same time.
 
-Run: .venv/bin/python -m bench.class_capacity [--max 16] [--window 30] [--gets 200]
+Run: .venv/bin/python -m bench.class_capacity [--max 16] [--window 30] [--gets 30]
      [--idle N] [--keep-going] [--record]
 A learner is what a learner's server runs: a lab as `make lab` starts it (JupyterLab, the lab's
 machine service, the world: MuJoCo simulation and meshcat view; no terminal, so no ros2
@@ -11,7 +11,9 @@ per learner on the 3D view through JupyterLab's proxy (the learner's browser tab
 2, 4, 8, ... all N
 learners drive at once; over a common window each kernel measures its simulation's real-time
 factor (the /odom stamps against wall time) and times `%ros2 param get` magics, one in each
-equal slot of the window at a random moment of it (--in-step: at the slot's start, every
+equal slot of the window at a random moment of it, one a second by default (a learner types
+slower; the bench's 200 in 30 s cost each kernel 0.02 cores, a seventh of a driving learner,
+so the probe measured its own load) (--in-step: at the slot's start, every
 learner's at the same instant; learners do not type in step, and N gets at once measure a
 burst: N x 2 ms of CPU on 2 cores).
 Each round prints every learner's figures and one learner's processes (CPU cores, PSS MiB);
@@ -62,6 +64,7 @@ from course_lib.core.host.procfs import environ as process_environ
 from course_lib.processes.orphans import NAME_ENV
 
 HUB = -1  # the hub's own processes, measured beside the learners' (bench.hub_class)
+GETS_PER_S = 1.0  # each learner's param gets a second of the window, unless --gets says
 OTHERS_LIMIT = 0.25  # cores used outside the bench that make a failed round suspect
 ATTEMPTS = 3
 
@@ -385,18 +388,23 @@ def sizes(cap: int) -> list[int]:
     return out
 
 
-def gets_timing(in_step: bool) -> str:
-    """Say when the learners' param gets come (pure)."""
-    if in_step:
-        return "every learner's at the same instants (--in-step)"
-    return "each learner's at its own random moments"
+def gets_timing(in_step: bool, gets: int, window_s: float) -> str:
+    """Say when the learners' param gets come and how often (pure)."""
+    when = (
+        "every learner's at the same instants (--in-step)"
+        if in_step
+        else "each learner's at its own random moments"
+    )
+    return f"{when}, {gets / window_s:.2g} a second ({gets} in {window_s:g} s)"
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max", type=int, default=16, help="most learners (default 16)")
     parser.add_argument("--window", type=float, default=30.0, help="seconds measured per N")
-    parser.add_argument("--gets", type=int, default=200, help="param gets per learner per N")
+    parser.add_argument(
+        "--gets", type=int, default=None, help="param gets per learner per N (one a second)"
+    )
     parser.add_argument(
         "--in-step",
         action="store_true",
@@ -423,6 +431,7 @@ def main() -> None:
         f"cores than this (default {OTHERS_LIMIT})",
     )
     args = parser.parse_args()
+    gets = args.gets or max(1, round(args.window * GETS_PER_S))
     signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop everything on SIGTERM too
     started = time.monotonic()
     load_before = os.getloadavg()
@@ -431,7 +440,7 @@ def main() -> None:
         f"{load_before[0]:.2f} {load_before[1]:.2f} {load_before[2]:.2f} before the bench",
         flush=True,
     )
-    print(f"param gets: {gets_timing(args.in_step)}", flush=True)
+    print(f"param gets: {gets_timing(args.in_step, gets, args.window)}", flush=True)
     learners: list[Learner] = []
     idle: list[Learner] = []
     rounds: list[Round] = []
@@ -445,7 +454,7 @@ def main() -> None:
             rounds.append(
                 measured_round(
                     lambda: drive_round(
-                        learners, args.window, args.gets, in_step=args.in_step, idle=idle
+                        learners, args.window, gets, in_step=args.in_step, idle=idle
                     ),
                     args.others,
                 )
@@ -461,7 +470,7 @@ def main() -> None:
     facts = summary(rounds)
     print_class(facts, load_before, time.monotonic() - started)
     if args.record:
-        record(facts, load_before, gets_timing(args.in_step))
+        record(facts, load_before, gets_timing(args.in_step, gets, args.window))
 
 
 if __name__ == "__main__":

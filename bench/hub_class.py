@@ -1,6 +1,6 @@
 """A class through a real hub: N learners signed in and driving, and what the hub itself costs.
 
-Run (root): .venv/bin/python -m bench.hub_class [--learners 16] [--window 30] [--gets 200]
+Run (root): .venv/bin/python -m bench.hub_class [--learners 16] [--window 30] [--gets 30]
             [--no-wall] [--environment DIR]
 Starts the course's class hub (`python -m course_lib hub`, test accounts r2pb-<n>, removed
 after), signs each learner in (their server starts through the hub), starts a kernel on each
@@ -44,7 +44,14 @@ from bench._hub import (
 )
 from bench._hub_kernel import HubKernel
 from bench._labs import tree_pids
-from bench.class_capacity import OTHERS_LIMIT, SETUP, Views, drive_round, measured_round
+from bench.class_capacity import (
+    GETS_PER_S,
+    OTHERS_LIMIT,
+    SETUP,
+    Views,
+    drive_round,
+    measured_round,
+)
 
 # The learner's copy of the course has no bench/: the drive's code goes to the kernel first.
 _INSTALL_DRIVE = """\
@@ -134,13 +141,16 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--learners", type=int, default=16)
     parser.add_argument("--window", type=float, default=30.0, help="seconds measured")
-    parser.add_argument("--gets", type=int, default=200, help="param gets per learner")
+    parser.add_argument(
+        "--gets", type=int, default=None, help="param gets per learner (one a second)"
+    )
     parser.add_argument("--no-wall", action="store_true", help="start the hub without its wall")
     parser.add_argument("--environment", type=Path, default=default_environment())
     parser.add_argument(
         "--record", action="store_true", help="write the hub's figures to deploy/capacity.yaml"
     )
     args = parser.parse_args()
+    gets = args.gets or max(1, round(args.window * GETS_PER_S))
     if os.geteuid() != 0:
         print("hub_class: skipped (a class hub needs root and creates accounts)")
         return 0
@@ -161,7 +171,7 @@ def main() -> int:
                     while len(learners) < n:
                         learners.append(add_learner(hub, len(learners) + 1, views))
                     own = hub_processes(hub, learners)
-                    drive = partial(drive_round, learners, args.window, args.gets, hub=own)
+                    drive = partial(drive_round, learners, args.window, gets, hub=own)
                     rounds.append(measured_round(drive, OTHERS_LIMIT))
             finally:
                 views.stop()

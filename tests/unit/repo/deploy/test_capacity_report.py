@@ -19,7 +19,7 @@ from bench._capacity_report import (
     percentile,
     requests,
 )
-from bench.class_capacity import sizes
+from bench.class_capacity import gets_timing, sizes
 
 
 def _figures(rtf: float = 1.0, gets_ms: float = 5.0, top_speed: float = 0.2) -> Figures:
@@ -75,6 +75,14 @@ def test_learner_counts_double_up_to_the_cap() -> None:
 
 def test_in_step_gets_come_at_each_slot_start() -> None:
     assert get_moments(10.0, 11.0, 4, None) == [10.0, 10.25, 10.5, 10.75]
+
+
+def test_the_bench_says_how_often_each_learner_asks() -> None:
+    """The probe's rate is part of the load measured (200 gets in 30 s cost each kernel 0.02
+    cores): the figures say which one they were measured with."""
+    said = gets_timing(False, 30, 30.0)
+    assert said == "each learner's at its own random moments, 1 a second (30 in 30 s)"
+    assert gets_timing(True, 200, 30.0).endswith("6.7 a second (200 in 30 s)")
 
 
 def test_a_learner_of_its_own_asks_once_in_each_slot_at_its_own_moments() -> None:
