@@ -286,16 +286,17 @@ def drive_round(
     bench_before, busy_before = _cpu_seconds([own])[own], _busy_seconds()
     views_before = {learner.number: learner.view_updates for learner in learners}
     started = time.monotonic()
-    time.sleep(window_s / 2)
-    pss = {n: _pss_mib(pids) for n, pids in roots.items()}
-    shm = {learner.number: shm_mib(roots[learner.number]) for learner in learners}
-    mem_used = (psutil.virtual_memory().total - psutil.virtual_memory().available) / 2**20
     time.sleep(max(0.0, t1 - time.time()))
     elapsed = time.monotonic() - started
     after = {n: _cpu_seconds(pids) for n, pids in roots.items()}
     bench_cpu = _cpu_seconds([own])[own] - bench_before
     busy = (_busy_seconds() - busy_before) / elapsed
     load = os.getloadavg()
+    # After the window: reading a process's smaps_rollup walks its memory under the lock its
+    # own mmap and munmap take, and 100 of them take seconds: the gets it stalled were timed.
+    pss = {n: _pss_mib(pids) for n, pids in roots.items()}
+    shm = {learner.number: shm_mib(roots[learner.number]) for learner in learners}
+    mem_used = (psutil.virtual_memory().total - psutil.virtual_memory().available) / 2**20
     figures = []
     learners_cpu = 0.0
     for learner in learners:
