@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
 from pathlib import Path
 
@@ -24,12 +25,14 @@ def _build(args: argparse.Namespace) -> int:
 def _lab(args: argparse.Namespace) -> int:
     from ..lab.jupyterlab import run_lab
 
+    signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop cleanly on SIGTERM too
     checked = _check_config_in_child()  # a broken config/ stops the lab before JupyterLab starts
     return checked or run_lab(args.extra)
 
 
 def _check_config_in_child() -> int:
-    """Check config/ in a forked child; return its exit code (1: broken, said on stderr).
+    """Check config/ in a forked child; return 0 if valid, 1 if not (said on stderr), 130 if
+    stopped.
 
     The lab's process lives as long as the lab: the checker's modules (YAML schemas, lesson
     texts, package metadata) would stay in it, about 4 MiB a learner.
@@ -48,7 +51,9 @@ def _check_config_in_child() -> int:
                 code = 0
             except CourseError as exc:
                 print(exc, file=sys.stderr)
-        except BaseException:  # a child must never return into the parent's code
+        except KeyboardInterrupt:  # Ctrl-C reaches the whole group: the lab says it stopped
+            code = 130
+        except BaseException:  # a child must never return into the parent's code: say why
             import traceback
 
             traceback.print_exc()
@@ -56,7 +61,12 @@ def _check_config_in_child() -> int:
             sys.stdout.flush()
             sys.stderr.flush()
             os._exit(code)
-    _, status = os.waitpid(pid, 0)
+    try:
+        _, status = os.waitpid(pid, 0)
+    except KeyboardInterrupt:  # Ctrl-C or SIGTERM to the lab alone: the check ends with it
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+        return 130
     return os.waitstatus_to_exitcode(status) and 1
 
 

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -15,7 +17,9 @@ from course_lib.config.commented import commented_yaml
 from course_lib.config.course import CourseSettings, TravelExercise
 from course_lib.config.simulation import SimulationSettings, StartPose
 from course_lib.config.trip import MAX_TRAVEL_M, answer_trip, wrong_trip
+from course_lib.core.host.procfs import pid_alive
 from course_lib.core.paths import CONFIG_DIR, CONFIG_DIR_ENV, NOTEBOOKS_DIR, REPO_ROOT
+from course_lib.core.waiting import wait_until
 from course_lib.lessons.texts import TEMPLATES, render_cells, settings_used
 from course_lib.tools.config_check import HEADERS, check_config, settings_table_rows
 
@@ -183,3 +187,46 @@ def test_a_config_folder_without_hub_yaml_is_complete(tmp_path: Path) -> None:
     report = check_config(folder)
     assert report.ok, report.render()
     assert "config/: course.yaml, simulation.yaml are valid" in report.render(), report.render()
+
+
+@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM])
+def test_a_lab_stopped_during_its_config_check_leaves_no_checker_behind(
+    tmp_path: Path, stop: signal.Signals
+) -> None:
+    """The lab checks config/ in a child it forks; the lab stopped alone (not its process
+    group) ends that child too, and starts nothing."""
+    folder = tmp_path / "config"
+    shutil.copytree(CONFIG_DIR, folder)
+    (folder / "course.yaml").unlink()
+    os.mkfifo(folder / "course.yaml")  # the check blocks reading it: stopped mid-check
+    lab = subprocess.Popen(
+        [sys.executable, "-m", "course_lib", "lab"],
+        cwd=REPO_ROOT,
+        env={**os.environ, CONFIG_DIR_ENV: str(folder)},
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        checker = wait_until(lambda: _children(lab.pid), 30.0, message="no checker forked")[0]
+        wait_until(lambda: _blocked_on_fifo(checker), 10.0, message="the check never read it")
+        lab.send_signal(stop)
+        out, err = lab.communicate(timeout=10)
+        assert lab.returncode == 130, out + err
+        assert "Traceback" not in err and "ROS_DOMAIN_ID=" not in out
+        assert not pid_alive(checker), "the config check outlived its lab"
+    finally:
+        lab.kill()
+        with contextlib.suppress(OSError):  # a checker left behind: let its open return
+            fd = os.open(folder / "course.yaml", os.O_WRONLY | os.O_NONBLOCK)
+            os.close(fd)
+
+
+def _children(pid: int) -> list[int]:
+    path = Path(f"/proc/{pid}/task/{pid}/children")
+    return [int(c) for c in path.read_text().split()] if path.exists() else []
+
+
+def _blocked_on_fifo(pid: int) -> bool:
+    wchan = Path(f"/proc/{pid}/wchan").read_text()  # opening it, no writer yet
+    return wchan in {"fifo_open", "wait_for_partner"}
