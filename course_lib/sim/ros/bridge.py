@@ -12,7 +12,8 @@ from typing import Any
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rclpy.context import Context
-from rclpy.executors import SingleThreadedExecutor
+from rclpy.executors import Executor, SingleThreadedExecutor
+from rclpy.experimental import EventsExecutor
 from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
 from rclpy.qos_overriding_options import QoSOverridingOptions
 from rosgraph_msgs.msg import Clock
@@ -53,10 +54,14 @@ _OVERRIDABLE = QoSOverridingOptions(
     ]
 )
 _log = logging.getLogger(__name__)
-# The node whose /cmd_vel arrives ten times a second. rclpy's executor rebuilds its wait set
-# from every entity of its nodes at each wake (nine nodes' parameter services, in Python), so
-# this node waits in an executor and thread of its own: 0.019 -> 0.008 cores while driving.
+# The node whose /cmd_vel arrives ten times a second waits in an executor and thread of its own:
+# rclpy's SingleThreadedExecutor rebuilds its wait set from every entity of its nodes at each
+# wake, in Python (0.019 cores with all nine nodes, 0.008 with this one alone), and rclpy's
+# events executor (C++) does not (0.002). Its spin() busy-waits in rclpy 7.1.6, so the thread
+# calls spin_once with a timeout. Only here: this node's entities never change while it spins
+# (a client node that destroyed a subscription under the events executor crashed its process).
 _DRIVE_NODE = "turtlebot3_diff_drive"
+_EVENTS_WAIT_S = 1.0  # the longest the drive's thread waits before it looks at _stop again
 # The loop sleeps through the points nobody reads (Bridge._doze), at most this long: the
 # course's samples come every BATCH_S (0.1 s), or every REST_BATCH_S once the robot has rested
 # REST_S; a moving robot that a 3D view shows wakes for each of the view's frames. A wake costs
@@ -104,8 +109,10 @@ class Bridge:
         self._publishers()
         mujoco_node = self.nodes["mujoco"]
         mujoco_node.add_post_set_parameters_callback(self._on_parameters)
-        self.executors = {"sim-ros": SingleThreadedExecutor(context=context)}
-        self.executors["sim-drive"] = SingleThreadedExecutor(context=context)
+        self.executors: dict[str, Executor] = {
+            "sim-ros": SingleThreadedExecutor(context=context),
+            "sim-drive": EventsExecutor(context=context),
+        }
         for name, node in self.nodes.items():
             self.executors["sim-drive" if name == _DRIVE_NODE else "sim-ros"].add_node(node)
         self._spin_threads = [
@@ -161,10 +168,14 @@ class Bridge:
         self._reset_done = n["mujoco"].create_publisher(UInt32, RESET_DONE_TOPIC, reset_done_qos())
         self._samples = n["mujoco"].create_publisher(Float64MultiArray, SAMPLES_TOPIC, 10)
 
-    def _spin(self, executor: SingleThreadedExecutor) -> None:
+    def _spin(self, executor: Executor) -> None:
         """Serve the nodes' callbacks; a callback's error stops the whole world, logged."""
         try:
-            executor.spin()
+            if not isinstance(executor, SingleThreadedExecutor):  # the events executor
+                while not self._stop.is_set() and executor.context.ok():
+                    executor.spin_once(timeout_sec=_EVENTS_WAIT_S)
+            else:
+                executor.spin()
         except Exception as err:
             if self._stop.is_set() or not executor.context.ok():
                 return  # ends when the context shuts down
