@@ -11,7 +11,7 @@ import shutil
 from pathlib import Path
 
 from ..core.paths import REPO_ROOT, runtime_dir
-from ..processes.orphans import reap_orphans
+from ..processes.orphans import descended_from, reap_orphans
 from ..processes.ownership import is_course_lab, lab_markers
 
 __all__ = ["clean_up_killed_labs", "ran_from_this_clone", "workspaces_dir"]
@@ -54,9 +54,10 @@ def clean_up_killed_labs() -> str | None:
                 shutil.rmtree(path, ignore_errors=True)
             else:
                 path.unlink(missing_ok=True)
-    left = reap_orphans()
+    reaped = reap_orphans()  # every leftover of this user's; the sentence counts the labs'
     if not ours:  # another clone's lab (the runtime folder is per user): not this one's news
         return None
+    left = descended_from(set(ours), reaped)
     killed = {pid: killed[pid] for pid in ours}
     labs = ", ".join(str(pid) for pid in sorted(killed))
     which = f"The previous lab (pid {labs})" if len(killed) == 1 else f"Earlier labs (pids {labs})"

@@ -27,6 +27,7 @@ __all__ = [
     "OWNER_NS_ENV",
     "SPAWNED_ENV",
     "command_tag",
+    "descended_from",
     "holds_dds_socket",
     "owner_alive",
     "owner_tag",
@@ -133,11 +134,12 @@ def started_by_course(pid: int, env: Mapping[str, str], cmdline: Sequence[str]) 
     )
 
 
-def _orphans() -> dict[int, str]:
+def _orphans() -> dict[int, tuple[str, int]]:
     """Return this user's course processes whose owner tag names a process that is gone.
 
-    Each with its start time, so that a pid reused since is never taken for it. A program
-    that only inherited the tag (see `started_by_course`) is the learner's: never one.
+    Each with its start time, so that a pid reused since is never taken for it, and the pid
+    its tag names. A program that only inherited the tag (see `started_by_course`) is the
+    learner's: never one.
     """
     me, uid = os.getpid(), os.getuid()
     found = {}
@@ -152,26 +154,38 @@ def _orphans() -> dict[int, str]:
                 and not owner_alive(tag, env.get(OWNER_NS_ENV, ""))
                 and started_by_course(pid, env, procfs.cmdline(pid) or ())
             ):
-                found[pid] = started
+                found[pid] = (started, int(tag.partition(":")[0]))
     return found
 
 
-def reap_orphans(*, rounds: int = 4) -> list[int]:
-    """Kill this user's course processes whose owner is gone (then theirs); return their PIDs.
+def reap_orphans(*, rounds: int = 4) -> dict[int, int]:
+    """Kill this user's course processes whose owner is gone (then theirs); return each
+    one's pid and the pid of the owner it had.
 
     Only processes whose owner tag names a dead process: never one whose owner still runs
     (JupyterLab's terminals and the learner's programs in them name the live lab).
     """
-    killed: list[int] = []
+    killed: dict[int, int] = {}
     for _ in range(rounds):
         batch = _orphans()
-        for pid, started in batch.items():
+        for pid, (started, _owner) in batch.items():
             if procfs.start_time(pid) != started:
                 continue  # gone since, and its pid perhaps another process's now
             with contextlib.suppress(ProcessLookupError, PermissionError):
                 send(pid, signal.SIGKILL, reason="a leftover: its owner is gone")
         if not batch:
             break
-        killed += list(batch)
+        killed.update({pid: owner for pid, (_started, owner) in batch.items()})
         time.sleep(0.02)  # let the kernel mark them dead before judging their children
     return killed
+
+
+def descended_from(owners: set[int], reaped: Mapping[int, int]) -> list[int]:
+    """Return the `reaped` processes (pid to owner pid) whose owners lead back to `owners`
+    (pure)."""
+    found: set[int] = set()
+    while True:
+        more = {pid for pid, owner in reaped.items() if owner in owners | found} - found
+        if not more:
+            return sorted(found)
+        found |= more
