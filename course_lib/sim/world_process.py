@@ -65,6 +65,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     1 when a ROS callback raised: its traceback is logged, then this last line names it.
     """
+    from ..core.host.scheduling import as_background_work
+
+    as_background_work()  # before any thread starts: every thread of the world inherits it
     import rclpy
     from rclpy.signals import SignalHandlerOptions
     from rclpy.utilities import remove_ros_args

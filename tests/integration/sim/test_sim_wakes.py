@@ -10,6 +10,7 @@ still gets each message when it is due.
 from __future__ import annotations
 
 import itertools
+import os
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -92,3 +93,15 @@ def test_a_reader_of_odom_gets_each_message_when_it_is_due(session: Session, wor
     assert len(came) >= 50, f"{len(came)} /odom messages in 2 s (50 Hz)"
     spacing = sorted(b - a for a, b in itertools.pairwise(came))
     assert spacing[len(spacing) // 2] > 0.01, f"/odom came in bursts: spacing {spacing[:10]}"
+
+
+def test_every_thread_of_the_world_is_background_work(world: World) -> None:
+    # Sixteen learners on two cores: the worlds' wake-ups never preempt a learner's command
+    # (course_lib.core.host.scheduling); the learner's own processes stay as they were.
+    from course_lib.core.host.scheduling import is_background_work
+
+    pid = world.process.pid
+    threads = [int(tid) for tid in os.listdir(f"/proc/{pid}/task")]
+    assert len(threads) > 5  # the loop, the ROS executors, Fast DDS's, the view's
+    assert [tid for tid in threads if not is_background_work(tid)] == []
+    assert not is_background_work(os.getpid())
