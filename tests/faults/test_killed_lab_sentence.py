@@ -8,9 +8,12 @@ counted ("the 1 process(es) left running are stopped" for a lab nothing of which
 from __future__ import annotations
 
 import os
+import shutil
 import signal
 import subprocess
 import sys
+import tempfile
+from collections.abc import Iterator
 
 import pytest
 from suite_env import independent_env
@@ -21,8 +24,10 @@ from course_lib.processes.orphans import OWNER_ENV, SPAWNED_ENV, command_tag
 pytestmark = pytest.mark.slow
 
 CLEAN_UP = """
+import os
 from course_lib.core.paths import REPO_ROOT, runtime_dir
 from course_lib.lab.leftovers import clean_up_killed_labs
+assert str(runtime_dir()).startswith(os.environ["TMPDIR"]), runtime_dir()  # the test's own
 (runtime_dir() / "lab-{lab}.clone").write_text(str(REPO_ROOT))
 print(clean_up_killed_labs())
 """
@@ -38,7 +43,16 @@ def _dead_pid() -> int:
     return int(ended.stdout)
 
 
-def test_another_owners_leftover_is_reaped_but_not_counted_as_the_labs(tmp_path) -> None:
+@pytest.fixture
+def short_tmp() -> Iterator[str]:
+    """Yield a TMPDIR of the test's own, short enough to hold the course's runtime folder (a
+    longer one, such as pytest's tmp_path, falls back to the user's shared folder in /tmp)."""
+    folder = tempfile.mkdtemp(prefix="ks")
+    yield folder
+    shutil.rmtree(folder, ignore_errors=True)
+
+
+def test_another_owners_leftover_is_reaped_but_not_counted_as_the_labs(short_tmp: str) -> None:
     lab, other_owner = _dead_pid(), _dead_pid()
     argv = [sys.executable, "-c", "import time; print('up', flush=True); time.sleep(600)"]
     other = subprocess.Popen(
@@ -52,7 +66,7 @@ def test_another_owners_leftover_is_reaped_but_not_counted_as_the_labs(tmp_path)
         assert other.stdout is not None and other.stdout.readline() == "up\n"
         said = subprocess.run(
             [sys.executable, "-c", CLEAN_UP.format(lab=lab)],
-            env=independent_env(TMPDIR=str(tmp_path)),
+            env=independent_env(TMPDIR=short_tmp),
             cwd=REPO_ROOT,
             capture_output=True,
             text=True,
