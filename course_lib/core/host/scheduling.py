@@ -1,11 +1,11 @@
 """Tell Linux which of the course's processes are background work: the world's physics.
 
 A class puts sixteen learners on two cores. A learner's command (`%ros2 param get`) waits
-for its kernel and the tutorial's node to get a core, and a simulation that wakes fifty times
-a second was often the task in their way. Batch scheduling (SCHED_BATCH) keeps a process's
-share of the CPU and its priority (its nice value) as they were; only its wake-ups never
-preempt a running task, so the others' do first. The world keeps real time: its pacer
-catches up on the few milliseconds a wake-up may wait.
+for its kernel and the tutorial's node to get a core, and sixteen simulations, each waking
+tens of times a second, were often the tasks in their way. Batch scheduling (SCHED_BATCH)
+keeps a process's share of the CPU and its priority (its nice value) as they were; only its
+wake-ups never preempt a running task, so the others' do first. The world keeps real time:
+its pacer catches up on the few milliseconds a wake-up may wait.
 """
 
 from __future__ import annotations
