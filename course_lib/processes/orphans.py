@@ -154,7 +154,8 @@ def _orphans() -> dict[int, tuple[str, int]]:
                 and not owner_alive(tag, env.get(OWNER_NS_ENV, ""))
                 and started_by_course(pid, env, procfs.cmdline(pid) or ())
             ):
-                found[pid] = (started, int(tag.partition(":")[0]))
+                owner = tag.partition(":")[0]
+                found[pid] = (started, int(owner) if owner.isdigit() else -1)  # -1: a bad tag
     return found
 
 

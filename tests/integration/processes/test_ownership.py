@@ -220,3 +220,19 @@ def test_a_tag_from_another_pid_namespace_is_never_judged_here(started) -> None:
     found = reasons()
     assert elsewhere.pid not in found and found.get(here.pid) == "leftover"
     assert elsewhere.pid not in reap_orphans()
+
+
+def test_a_leftover_with_a_garbled_owner_tag_is_reaped_without_an_error(started) -> None:
+    # A tag that names no pid ("x:1", edited by hand or cut short) counts as a gone owner;
+    # reaping, which every session does as it starts, must not fail on it.
+    env = {**independent_env(), OWNER_ENV: "x:1", SPAWNED_ENV: command_tag(SLEEP)}
+
+    def start() -> subprocess.Popen[str]:
+        leftover = subprocess.Popen(SLEEP, env=env, stdout=subprocess.PIPE, text=True)
+        started.append(leftover)
+        return leftover
+
+    def judge(leftover: subprocess.Popen[str]) -> bool:
+        return leftover.pid in reap_orphans() and leftover.wait(timeout=2) == -signal.SIGKILL
+
+    assert judge_leftover(start, judge)  # other sessions may reap it first: see leftovers.py
