@@ -64,10 +64,13 @@ def _check_config_in_child() -> int:
     try:
         _, status = os.waitpid(pid, 0)
     except KeyboardInterrupt:  # Ctrl-C or SIGTERM to the lab alone: the check ends with it
-        os.kill(pid, signal.SIGKILL)
+        from ..core.host.signalling import send
+
+        send(pid, signal.SIGKILL, reason="the lab stopped during its config check")
         os.waitpid(pid, 0)
         return 130
-    return os.waitstatus_to_exitcode(status) and 1
+    code = os.waitstatus_to_exitcode(status)
+    return code if code in (0, 130) else 1
 
 
 def _hub(args: argparse.Namespace) -> int:

@@ -16,6 +16,7 @@ import tempfile
 from collections.abc import Iterator
 
 import pytest
+from leftovers import dead_pid, judge_leftover
 from suite_env import independent_env
 
 from course_lib.core.paths import REPO_ROOT
@@ -23,6 +24,7 @@ from course_lib.processes.orphans import OWNER_ENV, SPAWNED_ENV, command_tag
 
 pytestmark = pytest.mark.slow
 
+SLEEP = [sys.executable, "-c", "import time; print('up', flush=True); time.sleep(600)"]
 CLEAN_UP = """
 import os
 from course_lib.core.paths import REPO_ROOT, runtime_dir
@@ -31,16 +33,6 @@ assert str(runtime_dir()).startswith(os.environ["TMPDIR"]), runtime_dir()  # the
 (runtime_dir() / "lab-{lab}.clone").write_text(str(REPO_ROOT))
 print(clean_up_killed_labs())
 """
-
-
-def _dead_pid() -> int:
-    ended = subprocess.run(
-        [sys.executable, "-c", "import os; print(os.getpid())"],
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    return int(ended.stdout)
 
 
 @pytest.fixture
@@ -53,17 +45,16 @@ def short_tmp() -> Iterator[str]:
 
 
 def test_another_owners_leftover_is_reaped_but_not_counted_as_the_labs(short_tmp: str) -> None:
-    lab, other_owner = _dead_pid(), _dead_pid()
-    argv = [sys.executable, "-c", "import time; print('up', flush=True); time.sleep(600)"]
-    other = subprocess.Popen(
-        argv,
-        env={**os.environ, OWNER_ENV: f"{other_owner}:1", SPAWNED_ENV: command_tag(argv)},
-        start_new_session=True,
-        stdout=subprocess.PIPE,
-        text=True,
-    )
-    try:
-        assert other.stdout is not None and other.stdout.readline() == "up\n"
+    env = {**os.environ, OWNER_ENV: f"{dead_pid()}:1", SPAWNED_ENV: command_tag(SLEEP)}
+    started: list[subprocess.Popen[str]] = []
+
+    def start() -> subprocess.Popen[str]:
+        leftover = subprocess.Popen(SLEEP, env=env, stdout=subprocess.PIPE, text=True)
+        started.append(leftover)
+        return leftover
+
+    def judge(other: subprocess.Popen[str]) -> bool:
+        lab = dead_pid()
         said = subprocess.run(
             [sys.executable, "-c", CLEAN_UP.format(lab=lab)],
             env=independent_env(TMPDIR=short_tmp),
@@ -79,9 +70,14 @@ def test_another_owners_leftover_is_reaped_but_not_counted_as_the_labs(short_tmp
         ), said
         # reaped all the same (by this clean-up, or by another session of this user first)
         assert other.wait(timeout=5) == -signal.SIGKILL
+        return True
+
+    try:
+        assert judge_leftover(start, judge)  # restarted if another session reaps it first
     finally:
-        if other.poll() is None:
-            other.kill()
-            other.wait()
-        if other.stdout is not None:
-            other.stdout.close()
+        for proc in started:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait()
+            if proc.stdout is not None:
+                proc.stdout.close()

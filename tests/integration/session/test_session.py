@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 
 import pytest
-from leftovers import judge_leftover
+from leftovers import dead_pid, judge_leftover
 from rclpy.parameter_client import AsyncParameterClient
 
 from course_lib.core.errors import ExecutableNotFoundError, PackageNotFoundError
@@ -180,13 +180,7 @@ def test_owner_that_exits_normally_stops_its_children_like_ctrl_c(tmp_path: Path
 
 def test_leftovers_of_a_dead_owner_are_reaped() -> None:
     # A child that escaped the death signal (started by hand) but carries a dead owner's tag.
-    dead_owner = subprocess.run(
-        [sys.executable, "-c", "import os; print(os.getpid())"],
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    tag = f"{dead_owner.stdout.strip()}:1"
+    tag = f"{dead_pid()}:1"
     argv = [sys.executable, "-c", "import time; print('up', flush=True); time.sleep(600)"]
     started: list[subprocess.Popen[str]] = []
 

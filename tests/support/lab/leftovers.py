@@ -11,11 +11,23 @@ from __future__ import annotations
 
 import signal
 import subprocess
+import sys
 from collections.abc import Callable
 
-__all__ = ["judge_leftover"]
+__all__ = ["dead_pid", "judge_leftover"]
 
 REAPED = -signal.SIGKILL  # how `reap_orphans` ends a leftover
+
+
+def dead_pid() -> int:
+    """Return the pid of a process that has run and ended (an owner that is gone)."""
+    ended = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return int(ended.stdout)
 
 
 def _reaped(proc: subprocess.Popen[str], within: float) -> bool:
