@@ -1,7 +1,7 @@
 """How many learners one host holds: N labs, each running lesson 7's drive at the same time.
 
 Run: .venv/bin/python -m bench.class_capacity [--max 16] [--window 30] [--gets 30]
-     [--idle N] [--keep-going] [--record]
+     [--idle N] [--keep-going] [--only N] [--record]
 A learner is what a learner's server runs: a lab as `make lab` starts it (JupyterLab, the lab's
 machine service, the world: MuJoCo simulation and meshcat view; no terminal, so no ros2
 daemon, which starts with a lab's first terminal) and a real
@@ -389,6 +389,11 @@ def sizes(cap: int) -> list[int]:
     return out
 
 
+def planned_sizes(cap: int, only: int | None) -> list[int]:
+    """Return the N the bench measures: `only` alone, else `sizes(cap)` (pure)."""
+    return [only] if only else sizes(cap)
+
+
 def gets_timing(in_step: bool, gets: int, window_s: float) -> str:
     """Say when the learners' param gets come and how often (pure)."""
     when = (
@@ -418,6 +423,12 @@ def main() -> None:
         default=0,
         help="idle learners beside the driving ones (lesson 7's first cells, the robot still)",
     )
+    parser.add_argument(
+        "--only",
+        type=int,
+        default=None,
+        help="measure this one N (a quicker check; not with --record, which needs every N)",
+    )
     parser.add_argument("--record", action="store_true", help="write deploy/capacity.yaml")
     parser.add_argument(
         "--keep-going",
@@ -432,6 +443,8 @@ def main() -> None:
         f"cores than this (default {OTHERS_LIMIT})",
     )
     args = parser.parse_args()
+    if args.only is not None and args.record:
+        parser.error("--record needs every N: leave out --only")
     gets = args.gets or max(1, round(args.window * GETS_PER_S))
     signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop everything on SIGTERM too
     started = time.monotonic()
@@ -449,7 +462,7 @@ def main() -> None:
     try:
         while len(idle) < args.idle:
             idle.append(add_learner(1000 + len(idle), None))
-        for n in sizes(args.max):
+        for n in planned_sizes(args.max, args.only):
             while len(learners) < n:
                 learners.append(add_learner(len(learners) + 1, views))
             rounds.append(

@@ -57,8 +57,13 @@ def stat_fields(pid: int) -> list[str] | None:
 
     Index 0 is the state, 1 the parent pid, 2 the process group, 19 the start time.
     """
-    try:
-        return (PROC / str(pid) / "stat").read_text().rsplit(")", 1)[1].split()
+    try:  # os-level reads: a third of pathlib's cost, and `%ros2` asks on every command
+        fd = os.open(f"{PROC}/{pid}/stat", os.O_RDONLY)
+        try:
+            raw = os.read(fd, 4096)
+        finally:
+            os.close(fd)
+        return raw.decode(errors="replace").rsplit(")", 1)[1].split()
     except (OSError, IndexError):
         return None
 

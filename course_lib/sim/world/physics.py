@@ -106,9 +106,14 @@ class Simulation:
             self.step(steps)
             self.still = self.at_rest()
             return
-        timestep = self.model.opt.timestep
-        for _ in range(steps):  # MuJoCo's own sum, step by step: the same stamps as stepping
-            self.data.time += timestep
+        # MuJoCo's own sum, step by step (the same stamps as stepping), on a Python float:
+        # the same double additions, without 500 MjData attribute writes a second (0.0015
+        # cores of a still world)
+        timestep = float(self.model.opt.timestep)
+        now = float(self.data.time)
+        for _ in range(steps):
+            now += timestep
+        self.data.time = now
 
     def at_rest(self) -> bool:
         """Return True if the robot has no command and neither moves nor accelerates."""

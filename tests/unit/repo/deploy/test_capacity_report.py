@@ -19,7 +19,7 @@ from bench._capacity_report import (
     percentile,
     requests,
 )
-from bench.class_capacity import gets_timing, sizes
+from bench.class_capacity import gets_timing, planned_sizes, sizes
 
 
 def _figures(rtf: float = 1.0, gets_ms: float = 5.0, top_speed: float = 0.2) -> Figures:
@@ -71,6 +71,11 @@ def test_held_cores_never_pack_more_learners_per_core_than_held_every_goal() -> 
 def test_learner_counts_double_up_to_the_cap() -> None:
     assert sizes(16) == [1, 2, 4, 8, 16]
     assert sizes(12) == [1, 2, 4, 8]
+
+
+def test_only_measures_one_n_and_no_only_measures_every_doubling() -> None:
+    assert planned_sizes(16, None) == [1, 2, 4, 8, 16]
+    assert planned_sizes(16, 12) == [12]
 
 
 def test_in_step_gets_come_at_each_slot_start() -> None:
