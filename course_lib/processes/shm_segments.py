@@ -10,7 +10,10 @@ add up, half a MiB for each participant killed (a pod's /dev/shm holds 256 MiB).
 A segment is a leftover when nobody holds its lock and its lock file is older than a minute (a
 participant locks the file it has just made at once; the minute spares one doing so now). Only
 the current user's segments are touched. The shared port segments (`fastrtps_port<N>`, one per
-port, reused by the next participant) are left alone.
+port, reused by the next participant) are left alone, but for one its maker never finished
+(its first word is not boost.interprocess's "initialized", 2, a minute on): every participant
+that reaches that port waits for it forever (host-wide: each tries 7000, 7001, ... in turn),
+and a lesson's `start()` hung in `rclpy.init` with the host idle.
 """
 
 from __future__ import annotations
@@ -18,6 +21,7 @@ from __future__ import annotations
 import fcntl
 import os
 import re
+import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -27,6 +31,8 @@ __all__ = ["SHM_DIR", "Swept", "sweep_stale_segments"]
 SHM_DIR = Path("/dev/shm")
 MIN_AGE_S = 60.0
 _SEGMENT = re.compile(r"fastrtps_[0-9a-f]{16}")
+_PORT = re.compile(r"fastrtps_port\d+")
+_MADE = 2  # boost.interprocess's managed segment: its first word once the maker is done
 _LOCK_SUFFIX = "_el"
 
 
@@ -66,7 +72,38 @@ def sweep_stale_segments(
         if removed is not None:
             segments += 1
             size += removed
+    for port in _ports(folder):
+        removed = _remove_if_never_made(port, min_age_s, now)
+        if removed is not None:
+            segments += 1
+            size += removed
     return Swept(segments, size)
+
+
+def _ports(folder: Path) -> list[Path]:
+    try:
+        return [p for p in folder.iterdir() if _PORT.fullmatch(p.name)]
+    except OSError:
+        return []
+
+
+def _remove_if_never_made(port: Path, min_age_s: float, now: float) -> int | None:
+    """Remove a port segment its maker left unfinished; return its size, or None if kept."""
+    try:
+        fd = os.open(port, os.O_RDONLY | os.O_NOFOLLOW)
+    except OSError:
+        return None
+    try:
+        info = os.fstat(fd)
+        if info.st_uid != os.getuid() or now - info.st_mtime < min_age_s:
+            return None
+        head = os.read(fd, 4)
+        if len(head) == 4 and int.from_bytes(head, sys.byteorder) == _MADE:
+            return None
+        port.unlink(missing_ok=True)
+        return info.st_size
+    finally:
+        os.close(fd)
 
 
 def _remove_if_left(segment: Path, lock_file: Path, min_age_s: float, now: float) -> int | None:

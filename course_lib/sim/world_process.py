@@ -65,9 +65,6 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     1 when a ROS callback raised: its traceback is logged, then this last line names it.
     """
-    from ..core.host.scheduling import as_background_work
-
-    as_background_work()  # before any thread starts: every thread of the world inherits it
     import rclpy
     from rclpy.signals import SignalHandlerOptions
     from rclpy.utilities import remove_ros_args
@@ -79,6 +76,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except CourseError as err:
         print(err, file=sys.stderr, flush=True)
         return 2
+    from ..core.host.scheduling import as_background_work
     from .world import gl_backend
 
     gl_backend.defer("egl")  # headless offscreen camera, loaded with the camera's first frame
@@ -112,6 +110,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     def ready_and_mark() -> None:
         ready()
         started[:] = [sim.time, time.monotonic()]
+        as_background_work()  # up: from now on the learners' kernels and nodes go first
 
     try:
         bridge.run(ready=ready_and_mark, max_sim_time_s=args.duration)
