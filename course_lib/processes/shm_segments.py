@@ -18,11 +18,13 @@ and a lesson's `start()` hung in `rclpy.init` with the host idle.
 
 from __future__ import annotations
 
+import contextlib
 import fcntl
 import os
 import re
 import sys
 import time
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -87,35 +89,42 @@ def _ports(folder: Path) -> list[Path]:
         return []
 
 
-def _remove_if_never_made(port: Path, min_age_s: float, now: float) -> int | None:
-    """Remove a port segment its maker left unfinished; return its size, or None if kept."""
+@contextlib.contextmanager
+def _own_old_file(path: Path, min_age_s: float, now: float) -> Iterator[tuple[int, int] | None]:
+    """Open `path` (never through a symlink); yield its descriptor and size if it is this
+    user's and at least `min_age_s` old, else None."""
     try:
-        fd = os.open(port, os.O_RDONLY | os.O_NOFOLLOW)
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW)
     except OSError:
-        return None
+        yield None
+        return
     try:
         info = os.fstat(fd)
-        if info.st_uid != os.getuid() or now - info.st_mtime < min_age_s:
-            return None
-        head = os.read(fd, 4)
-        if len(head) == 4 and int.from_bytes(head, sys.byteorder) == _MADE:
-            return None
-        port.unlink(missing_ok=True)
-        return info.st_size
+        old = info.st_uid == os.getuid() and now - info.st_mtime >= min_age_s
+        yield (fd, info.st_size) if old else None
     finally:
         os.close(fd)
 
 
+def _remove_if_never_made(port: Path, min_age_s: float, now: float) -> int | None:
+    """Remove a port segment its maker left unfinished; return its size, or None if kept."""
+    with _own_old_file(port, min_age_s, now) as opened:
+        if opened is None:
+            return None
+        fd, size = opened
+        head = os.read(fd, 4)
+        if len(head) == 4 and int.from_bytes(head, sys.byteorder) == _MADE:
+            return None
+        port.unlink(missing_ok=True)
+        return size
+
+
 def _remove_if_left(segment: Path, lock_file: Path, min_age_s: float, now: float) -> int | None:
     """Remove `segment` and its lock file if nobody holds the lock; return its size, or None."""
-    try:
-        fd = os.open(lock_file, os.O_RDONLY | os.O_NOFOLLOW)
-    except OSError:
-        return None
-    try:
-        info = os.fstat(fd)
-        if info.st_uid != os.getuid() or now - info.st_mtime < min_age_s:
+    with _own_old_file(lock_file, min_age_s, now) as opened:
+        if opened is None:
             return None
+        fd, _size = opened
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:  # held: its participant lives
@@ -127,5 +136,3 @@ def _remove_if_left(segment: Path, lock_file: Path, min_age_s: float, now: float
             size = None  # a lock file alone: removed, not counted
         lock_file.unlink(missing_ok=True)  # while locked: no participant can take it meanwhile
         return size
-    finally:
-        os.close(fd)
