@@ -21,6 +21,7 @@ from ..core.paths import PACKAGE_DIR
 from ..processes.children import ChildProcess, spawn
 from ..processes.domain import DOMAIN_ENV, isolation_env, lease_domain
 from ..processes.orphans import reap_orphans
+from ..processes.shm_segments import sweep_stale_segments
 
 if TYPE_CHECKING:  # rclpy is imported when a node starts, not with this module
     from rclpy.parameter import Parameter
@@ -161,6 +162,8 @@ class Session:
 
     def __init__(self, *, domain_id: int | None = None) -> None:
         reap_orphans()
+        # before this kernel's participant: a port segment left unfinished would hang it
+        sweep_stale_segments()
         base = _explicit_env()
         if domain_id is not None:
             base[DOMAIN_ENV] = str(domain_id)
