@@ -22,6 +22,7 @@ from jupyter_client.manager import KernelManager
 from suite_env import independent_env
 
 from course_lib.core.host.procfs import pid_namespace
+from course_lib.core.host.scheduling import CLASS_HOST_ENV
 from course_lib.core.paths import REPO_ROOT, runtime_dir
 from course_lib.lab.protocol import SOCKET_ENV
 from course_lib.processes.children import ChildProcess, spawn
@@ -50,10 +51,12 @@ class Lab:
         self.process.stop(timeout=15.0)
 
 
-def start_lab(timeout: float = 90.0) -> Lab:
-    """Start `python -m course_lib lab` headless on a free port; return it once it serves."""
+def start_lab(timeout: float = 90.0, *, class_host: bool = False) -> Lab:
+    """Start `python -m course_lib lab` headless on a free port; return it once it serves
+    (`class_host`: as on a class's host, where the hub sets CLASS_HOST_ENV)."""
     argv = [sys.executable, "-m", "course_lib", "lab", "--no-browser", "--ServerApp.port=0"]
-    lab = spawn(argv, name="jupyterlab", env=independent_env(), cwd=REPO_ROOT, merge_stderr=True)
+    env = independent_env(**({CLASS_HOST_ENV: "1"} if class_host else {}))
+    lab = spawn(argv, name="jupyterlab", env=env, cwd=REPO_ROOT, merge_stderr=True)
     if lab.wait_for_line(_URL.pattern, timeout) is None:
         text = lab.text()[-2000:]
         lab.stop(timeout=15.0)

@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from ..core.host.scheduling import CLASS_HOST_ENV
 from .guard.tied import tied_command
 from .plan import HUB_SOCKET, PROXY_SOCKET, HubPlan
 from .provision.proxy import proxy_argv
@@ -77,7 +78,9 @@ def configure(c: Any, plan: HubPlan) -> None:
     c.Spawner.default_url = DEFAULT_URL
     c.Spawner.env_keep = ["LANG", "LC_ALL"]  # nothing of root's environment (its venv, PATH)
     venv_bin = str(Path(plan.learner_python).parent)
-    c.Spawner.environment = {"PATH": f"{venv_bin}:{LEARNER_PATH}", **server_env}
+    # a class's host: each learner's world yields to every learner's commands (scheduling.py)
+    class_host = {CLASS_HOST_ENV: "1"}
+    c.Spawner.environment = {"PATH": f"{venv_bin}:{LEARNER_PATH}", **class_host, **server_env}
     c.Spawner.start_timeout = 120
     c.CourseSpawner.wall = plan.wall
     c.CourseSpawner.sockets_dir = plan.sockets

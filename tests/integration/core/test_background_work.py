@@ -1,15 +1,17 @@
-"""The world's scheduling (course_lib.core.host.scheduling): batch work at a low weight, its
-own session's autogroup too, and never the autogroup of a session it does not lead."""
+"""The world's scheduling (course_lib.core.host.scheduling): batch work everywhere; on a
+class's host at a low weight too, its own session's autogroup as well, and never the
+autogroup of a session it does not lead."""
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
-from course_lib.core.host.scheduling import BACKGROUND_NICE
+from course_lib.core.host.scheduling import CLASS_HOST_ENV, CLASS_NICE
 
 pytestmark = pytest.mark.skipif(sys.platform != "linux", reason="Linux scheduling")
 
@@ -17,30 +19,41 @@ AUTOGROUP = Path("/proc/self/autogroup")
 REPORT = (
     "import os; from pathlib import Path; "
     "from course_lib.core.host.scheduling import as_background_work; "
-    "print(as_background_work(), os.getpriority(os.PRIO_PROCESS, 0), "
-    "Path('/proc/self/autogroup').read_text().split()[-1])"
+    "print(as_background_work(), os.sched_getscheduler(0) == os.SCHED_BATCH, "
+    "os.getpriority(os.PRIO_PROCESS, 0), Path('/proc/self/autogroup').read_text().split()[-1])"
 )
+needs_autogroups = pytest.mark.skipif(not AUTOGROUP.exists(), reason="no autogroups here")
 
 
-def _run(*, own_session: bool) -> list[str]:
+def _run(*, own_session: bool, class_host: bool) -> list[str]:
+    env = {k: v for k, v in os.environ.items() if k != CLASS_HOST_ENV}
+    if class_host:
+        env[CLASS_HOST_ENV] = "1"
     done = subprocess.run(
         [sys.executable, "-c", REPORT],
         capture_output=True,
         text=True,
         check=True,
         start_new_session=own_session,
+        env=env,
     )
     return done.stdout.split()
 
 
-@pytest.mark.skipif(not AUTOGROUP.exists(), reason="no autogroups on this kernel")
-def test_a_session_leader_lowers_its_own_autogroup() -> None:
-    assert _run(own_session=True) == ["True", str(BACKGROUND_NICE), str(BACKGROUND_NICE)]
+@needs_autogroups
+def test_on_a_class_host_a_session_leader_lowers_its_own_autogroup() -> None:
+    nice = str(CLASS_NICE)
+    assert _run(own_session=True, class_host=True) == ["True", "True", nice, nice]
 
 
-@pytest.mark.skipif(not AUTOGROUP.exists(), reason="no autogroups on this kernel")
+@needs_autogroups
 def test_a_process_in_anothers_session_leaves_that_sessions_autogroup_alone() -> None:
     # Its autogroup is its session's: the test's own, with the learner's kernel in a lab.
     before = AUTOGROUP.read_text().split()[-1]
-    assert _run(own_session=False) == ["True", str(BACKGROUND_NICE), before]
+    assert _run(own_session=False, class_host=True) == ["True", "True", str(CLASS_NICE), before]
     assert AUTOGROUP.read_text().split()[-1] == before
+
+
+@needs_autogroups
+def test_on_a_learners_own_computer_background_work_is_batch_at_its_usual_weight() -> None:
+    assert _run(own_session=True, class_host=False) == ["True", "True", "0", "0"]
