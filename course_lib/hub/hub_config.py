@@ -78,9 +78,11 @@ def configure(c: Any, plan: HubPlan) -> None:
     c.Spawner.default_url = DEFAULT_URL
     c.Spawner.env_keep = ["LANG", "LC_ALL"]  # nothing of root's environment (its venv, PATH)
     venv_bin = str(Path(plan.learner_python).parent)
-    # a class's host: each learner's world yields to every learner's commands (scheduling.py)
-    class_host = {CLASS_HOST_ENV: "1"}
-    c.Spawner.environment = {"PATH": f"{venv_bin}:{LEARNER_PATH}", **class_host, **server_env}
+    c.Spawner.environment = {
+        "PATH": f"{venv_bin}:{LEARNER_PATH}",
+        CLASS_HOST_ENV: "1",  # a class's host: each world yields to the learners' commands
+        **server_env,
+    }
     c.Spawner.start_timeout = 120
     c.CourseSpawner.wall = plan.wall
     c.CourseSpawner.sockets_dir = plan.sockets

@@ -61,32 +61,19 @@ def sweep_stale_segments(
 ) -> Swept:
     """Remove this user's Fast DDS segments in `folder` whose participant is gone."""
     now = time.time() if now is None else now
-    segments = size = 0
     try:
-        lock_files = [p for p in folder.iterdir() if p.name.endswith(_LOCK_SUFFIX)]
+        names = [p.name for p in folder.iterdir()]  # one listing for both kinds
     except OSError:  # no /dev/shm here
         return Swept()
-    for lock_file in lock_files:
-        segment = lock_file.with_name(lock_file.name.removesuffix(_LOCK_SUFFIX))
-        if not _SEGMENT.fullmatch(segment.name):
-            continue
-        removed = _remove_if_left(segment, lock_file, min_age_s, now)
-        if removed is not None:
-            segments += 1
-            size += removed
-    for port in _ports(folder):
-        removed = _remove_if_never_made(port, min_age_s, now)
-        if removed is not None:
-            segments += 1
-            size += removed
-    return Swept(segments, size)
-
-
-def _ports(folder: Path) -> list[Path]:
-    try:
-        return [p for p in folder.iterdir() if _PORT.fullmatch(p.name)]
-    except OSError:
-        return []
+    removed: list[int | None] = []
+    for name in names:
+        if name.endswith(_LOCK_SUFFIX) and _SEGMENT.fullmatch(name.removesuffix(_LOCK_SUFFIX)):
+            segment = folder / name.removesuffix(_LOCK_SUFFIX)
+            removed.append(_remove_if_left(segment, folder / name, min_age_s, now))
+        elif _PORT.fullmatch(name):
+            removed.append(_remove_if_never_made(folder / name, min_age_s, now))
+    sizes = [size for size in removed if size is not None]
+    return Swept(len(sizes), sum(sizes))
 
 
 @contextlib.contextmanager

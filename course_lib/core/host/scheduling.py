@@ -23,7 +23,6 @@ __all__ = [
     "CLASS_HOST_ENV",
     "CLASS_NICE",
     "as_background_work",
-    "background_nice",
     "is_background_work",
 ]
 
@@ -32,22 +31,23 @@ CLASS_NICE = 15
 _AUTOGROUP = Path("/proc/self/autogroup")
 
 
-def background_nice() -> int:
+def _background_nice() -> int:
     """Return the nice of background work here: CLASS_NICE on a class's host, else 0."""
     return CLASS_NICE if os.environ.get(CLASS_HOST_ENV) == "1" else 0
 
 
 def as_background_work() -> bool:
-    """Schedule this process as batch work at `background_nice()`: every thread it has, the
-    threads and processes they start from now on, and its session's autogroup if it leads
-    its session. Return False where the system has no such policy (not Linux) or refuses it.
+    """Schedule this process as batch work, at CLASS_NICE on a class's host: every thread it
+    has, the threads and processes they start from now on, and its session's autogroup if it
+    leads its session. Return False where the system has no such policy (not Linux) or
+    refuses it.
 
-    A world calls it once it is up: starting (imports, the model, the nodes: about 2 CPU-s)
-    at that weight beside a lab that starts too took it minutes on a busy host.
+    A world calls it once it is up: its start (imports, the model, the nodes: about 2 CPU-s)
+    keeps the usual weight, so a lab that starts is not kept waiting for its robot.
     """
     if not hasattr(os, "SCHED_BATCH"):
         return False
-    nice = background_nice()
+    nice = _background_nice()
     try:
         _background(0, nice)
     except OSError:

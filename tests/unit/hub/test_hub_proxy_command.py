@@ -10,6 +10,7 @@ from urllib.parse import unquote
 from jupyterhub.objects import Server
 from traitlets.config import Config
 
+from course_lib.core.host.scheduling import CLASS_HOST_ENV
 from course_lib.hub.hub_config import configure
 from course_lib.hub.plan import HubPlan
 from course_lib.hub.progress import PROGRESS_HOLDER_ENV
@@ -57,3 +58,4 @@ def test_the_proxys_api_is_a_unix_socket_in_the_hubs_state_folder(tmp_path: Path
 def test_servers_are_told_which_account_holds_the_progress_port(tmp_path: Path) -> None:
     environment = _configured(tmp_path).Spawner.environment
     assert environment[PROGRESS_HOLDER_ENV] == str(os.getuid())  # the launcher's: root
+    assert environment[CLASS_HOST_ENV] == "1"  # each learner's world yields to the commands
