@@ -157,7 +157,7 @@ class TravelExercise:
         world.reset()
         held = self._held_now()
         limit = self.settings.target_m + self.settings.tolerance_m
-        TravelExercise._watch = TripWatch(world, limit, self._stop_robot, at_arm=held)
+        TravelExercise._watch = TripWatch(world, limit, self._stop_at_once, at_arm=held)
         return held
 
     def _stop_robot(self, *, strict: bool = False) -> None:
@@ -170,6 +170,14 @@ class TravelExercise:
             result = api.param_set(NODE, "velocity", 0.0)
         if strict and not result.successful:
             raise CourseError(f"Could not stop {NODE}: {result.reason}")
+
+    def _stop_at_once(self) -> None:
+        """Set velocity 0.0 without asking first: the robot is moving past its limit, and
+        every round trip saved is road it does not drive."""
+        from ..ros2.api import nodes_and_params as api
+
+        with acting_door(DOOR):
+            api.param_set(NODE, "velocity", 0.0)
 
     def _held_now(self) -> Held:
         from ..ros2.api import nodes_and_params as api

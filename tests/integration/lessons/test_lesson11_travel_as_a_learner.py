@@ -12,6 +12,7 @@ import dataclasses
 import re
 import time
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -30,6 +31,11 @@ NODE = "/descriptor_vel_node"
 MEASURING = "Measuring the trip on /odom until the robot stops (at most {:g} s of simulated time)"
 REFUSED_5 = "Your `travel_time 5` was refused: it is an integer; write 5.0"
 SUCCESS = "Set parameter successful\n"
+# Past the limit (1.05 m) the check's guard sets velocity 0.0: the robot stops within one
+# simulated second at 0.2 m/s, a quarter of a wall second at 4x for the guard's set to reach
+# the node on a loaded host (1.07 m on an idle one; 1.18 once in CI with a get before the
+# set). The box stands at 2.4 m.
+STOPPED_BY_M = 1.25
 
 
 @pytest.fixture(scope="module")
@@ -37,7 +43,7 @@ def lesson(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Lesson]:
     session = get_session()
     start_world(session, show=False, real_time_factor=4.0)
     eleven = Lesson(11, session, load_course_settings())
-    eleven.learner_dir = tmp_path_factory.mktemp("my_files")  # the attempts file goes here
+    eleven.learner_dir = tmp_path_factory.mktemp("my_files")  # never the clone's notebooks/
     eleven.world(show=False)
     node = session.run(
         "parameter_descriptors", "descriptor_vel", "--ros-args", "-p", "use_sim_time:=true"
@@ -51,8 +57,10 @@ def lesson(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Lesson]:
 
 
 @pytest.fixture
-def travel(lesson: Lesson) -> Iterator[TravelExercise]:
-    """The node as it starts (velocity 0.0, travel_time 0.0), then the exercise armed."""
+def travel(lesson: Lesson, tmp_path: Path) -> Iterator[TravelExercise]:
+    """The node as it starts (velocity 0.0, travel_time 0.0), then the exercise armed; a
+    first attempt (the hints change with the count), even when a test is run again."""
+    lesson.learner_dir = tmp_path
     assert api.param_set(NODE, "velocity", 0.0).successful
     assert api.param_set(NODE, "travel_time", 0.0).successful
     exercise = TravelExercise(lesson)
@@ -110,7 +118,7 @@ def test_a_refused_integer_is_named_and_the_endless_trip_is_cut_short(
     assert REFUSED_5 in verdict.message
     assert "Set parameter successful" in verdict.hint, verdict.hint
     # stopped as soon as it passed target + tolerance (1.05 m), well before the box (2.4 m)
-    assert 1.05 < track.farthest_m < 1.15, track.farthest_m
+    assert 1.05 < track.farthest_m < STOPPED_BY_M, track.farthest_m
     assert took_s < 12.0, f"the check took {took_s:.1f} s of simulated time"
     assert api.param_get(NODE, "velocity").value == 0.0
 
@@ -122,7 +130,7 @@ def test_an_endless_trip_while_the_learner_reads_stops_short_of_the_box(
     _learner("travel_time 5", "velocity 0.2")
     with _Track(world) as track:
         _read_for(lesson, 15.0)  # at 0.2 m/s, 3 m: the red box stands 2.4 m ahead
-    assert 1.05 < track.farthest_m < 1.15, track.farthest_m
+    assert 1.05 < track.farthest_m < STOPPED_BY_M, track.farthest_m
     assert abs(world.odom().linear_mps) < 0.01, "the robot still drives"
     verdict = travel.check()
     assert not verdict.passed
