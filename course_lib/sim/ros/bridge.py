@@ -31,7 +31,7 @@ from ..world.samples import (
     SAMPLES_TOPIC,
     batch_size,
 )
-from .messages import Frames, MessageFactory
+from .messages import Frames, MessageFactory, stamp_seconds
 from .nodes import create_nodes, node_specs
 from .tf import TfFactory, TFMessage
 from .topics import FRESH_TOPIC, RESET_DONE_TOPIC, RESET_TOPIC, reset_done_qos
@@ -307,6 +307,8 @@ class Bridge:
                 self._wake.wait(0.1)
                 self._wake.clear()
                 continue
+            if self._lagging and max_sim_time_s is None and self._catch_up_still(schedule):
+                continue
             steps = schedule.steps_to_next()
             self.sim.advance(steps)  # a robot at rest with no command: only time passes
             if not self.sim.still:
@@ -327,6 +329,36 @@ class Bridge:
             if delay > 0 and self._wake.wait(delay):
                 self._wake.clear()
             self._dozing = False
+
+    def _catch_up_still(self, schedule: Schedule) -> bool:
+        """Take the points a resting robot dozed through, back to back, as the loop would,
+        and return True; or take none and return False, unless the robot is still and nobody
+        reads a stream but the course's samples.
+
+        Only time passes then (inputs wait until the loop has caught up, as they do point by
+        point): each odom point adds the same sample row with its own stamp, built once, and
+        no other message is due. Point by point, the wake once a second of a resting world
+        took about 3 ms for its fifty points.
+        """
+        camera = self.camera is not None and self.camera.wanted
+        if not self.sim.still or self._rest_since is None or camera:
+            return False
+        if any(publisher.get_subscription_count() for publisher in self.pub.values()):
+            return False
+        sampled = self._samples.get_subscription_count() > 0
+        pose = self.messages.sample_row()[1:] if sampled else []  # the same at every point
+        half_wake = self.sim.timestep * min(schedule.periods.values()) / 2
+        while self._lagging and not (self.paused or self._stop.is_set()):
+            steps = schedule.steps_to_next()
+            self.sim.advance(steps)
+            if "odom" in schedule.advance(steps) and sampled:
+                self._rows += [stamp_seconds(self.sim.time), *pose]
+                if len(self._rows) >= self._batch_now() * len(FIELDS):
+                    self._flush_samples()
+            self._lagging = self._overdue(self.sim.time + half_wake)
+        if not self._lagging:
+            self._doze_slack = 0.0  # caught up: a lag from now on is a stall
+        return True
 
     def _overdue(self, sim_time: float) -> bool:
         """Return True if simulated `sim_time` is already due on the wall clock (paced only)."""

@@ -13,7 +13,14 @@ from sensor_msgs.msg import Imu, JointState, LaserScan
 from ..world.model import WHEEL_JOINTS
 from ..world.physics import Simulation
 
-__all__ = ["Frames", "MessageFactory", "to_stamp"]
+__all__ = ["Frames", "MessageFactory", "stamp_seconds", "to_stamp"]
+
+
+def stamp_seconds(seconds: float) -> float:
+    """Return simulated `seconds` as a reader computes them from the stamp `to_stamp` makes
+    (sec + nanosec * 1e-9), without making the message."""
+    sec, nanosec = divmod(round(seconds * 1e9), 1_000_000_000)
+    return sec + nanosec * 1e-9
 
 
 def to_stamp(seconds: float) -> Time:
