@@ -23,16 +23,10 @@ from std_msgs.msg import Empty, Float64MultiArray, String, UInt32
 from ..world.frames import robot_frames
 from ..world.pacing import Cadence, Pacer, Schedule
 from ..world.physics import Simulation
-from ..world.samples import (
-    FIELDS,
-    FRESH_HOLD_S,
-    REST_BATCH_S,
-    REST_S,
-    SAMPLES_TOPIC,
-    batch_size,
-)
+from ..world.samples import REST_BATCH_S, SAMPLES_TOPIC
 from .messages import Frames, MessageFactory, stamp_seconds
 from .nodes import create_nodes, node_specs
+from .sample_batches import SampleBatches
 from .tf import TfFactory, TFMessage
 from .topics import FRESH_TOPIC, RESET_DONE_TOPIC, RESET_TOPIC, reset_done_qos
 from .urdf import robot_urdf
@@ -91,11 +85,6 @@ class Bridge:
             "tf_odom": lambda: self.tf.odom(factory.stamp),
             "tf_wheels": lambda: self.tf.wheels(factory.stamp),
         }
-        self._rows: list[float] = []  # samples waiting for the next SAMPLES_TOPIC message
-        self._batch = batch_size(settings.rates.odom_hz)
-        self._rest_batch = batch_size(settings.rates.odom_hz, REST_BATCH_S)
-        self._rest_since: float | None = None  # simulated time the robot came to rest
-        self._fresh_until = 0.0  # a reader asked for fresh samples: BATCH_S ones until then
         self._doze_slack = 0.0  # the lag (s) of the doze being caught up
         self.pacer = Pacer(settings.real_time_factor)
         self._view_period_s = 1.0 / settings.rates.viewer_hz
@@ -166,7 +155,8 @@ class Bridge:
         n["mujoco"].create_subscription(UInt32, RESET_TOPIC, self._on_reset, 10)
         n["mujoco"].create_subscription(Empty, FRESH_TOPIC, self._on_fresh, 10)
         self._reset_done = n["mujoco"].create_publisher(UInt32, RESET_DONE_TOPIC, reset_done_qos())
-        self._samples = n["mujoco"].create_publisher(Float64MultiArray, SAMPLES_TOPIC, 10)
+        samples = n["mujoco"].create_publisher(Float64MultiArray, SAMPLES_TOPIC, 10)
+        self.samples = SampleBatches(samples, self.sim.settings.rates.odom_hz)
 
     def _spin(self, executor: Executor) -> None:
         """Serve the nodes' callbacks; a callback's error stops the whole world, logged."""
@@ -226,27 +216,8 @@ class Bridge:
         self.messages.restamp()
         for name in read:
             self.pub[name].publish(self._builders[name]())
-        if "odom" in streams and self._samples.get_subscription_count():
-            self._rows += self.messages.sample_row()
-            if len(self._rows) >= self._batch_now() * len(FIELDS):
-                self._flush_samples()
-
-    def _resting(self) -> bool:
-        """Return True while the robot has rested REST_S and no reader asked for fresh
-        samples lately: its samples then go out REST_BATCH_S to a message."""
-        since = self._rest_since
-        now = self.sim.time
-        return since is not None and now - since >= REST_S and now >= self._fresh_until
-
-    def _batch_now(self) -> int:
-        """Return how many samples the next message waits for."""
-        return self._rest_batch if self._resting() else self._batch
-
-    def _flush_samples(self) -> None:
-        """Publish the samples that wait (the course's readers get them now)."""
-        if self._rows:
-            self._samples.publish(Float64MultiArray(data=self._rows))
-            self._rows = []
+        if "odom" in streams and self.samples.read:
+            self.samples.add(self.messages.sample_row(), self.sim.time)
 
     def _apply_inputs(self) -> None:
         """Apply commands and resets in the order they arrived."""
@@ -255,14 +226,13 @@ class Bridge:
             if kind == "cmd":
                 self.sim.command(*value)
             elif kind == "fresh":
-                self._fresh_until = self.sim.time + FRESH_HOLD_S
-                self._flush_samples()
+                self.samples.fresh(self.sim.time)
             else:
                 self.sim.reset()
                 self.pacer.restart()
-                self._rest_since = None  # put back at its start pose: its rest starts anew
+                self.samples.note(still=False, now=self.sim.time)  # its rest starts anew
                 self._publish(["odom", "joint_states", "tf_odom", "tf_wheels"])
-                self._flush_samples()  # the start pose reaches the readers before the reply
+                self.samples.flush()  # the start pose reaches the readers before the reply
                 self._reset_done.publish(UInt32(data=value))
 
     def run(self, *, ready: Any = None, max_sim_time_s: float | None = None) -> None:
@@ -303,7 +273,7 @@ class Bridge:
             if not self._lagging:
                 self._apply_inputs()
             if self.paused:
-                self._flush_samples()
+                self.samples.flush()
                 self._wake.wait(0.1)
                 self._wake.clear()
                 continue
@@ -311,10 +281,7 @@ class Bridge:
                 continue
             steps = schedule.steps_to_next()
             self.sim.advance(steps)  # a robot at rest with no command: only time passes
-            if not self.sim.still:
-                self._rest_since = None
-            elif self._rest_since is None:
-                self._rest_since = self.sim.time
+            self.samples.note(self.sim.still, self.sim.time)
             self._publish(schedule.advance(steps))
             if self.viewer is not None and view.due(time.monotonic()):
                 self.viewer.update(self.sim.data)
@@ -341,20 +308,18 @@ class Bridge:
         took about 3 ms for its fifty points.
         """
         camera = self.camera is not None and self.camera.wanted
-        if not self.sim.still or self._rest_since is None or camera:
+        if not self.sim.still or self.samples.rest_since is None or camera:
             return False
         if any(publisher.get_subscription_count() for publisher in self.pub.values()):
             return False
-        sampled = self._samples.get_subscription_count() > 0
+        sampled = self.samples.read
         pose = self.messages.sample_row()[1:] if sampled else []  # the same at every point
         half_wake = self.sim.timestep * min(schedule.periods.values()) / 2
         while self._lagging and not (self.paused or self._stop.is_set()):
             steps = schedule.steps_to_next()
             self.sim.advance(steps)
             if "odom" in schedule.advance(steps) and sampled:
-                self._rows += [stamp_seconds(self.sim.time), *pose]
-                if len(self._rows) >= self._batch_now() * len(FIELDS):
-                    self._flush_samples()
+                self.samples.add([stamp_seconds(self.sim.time), *pose], self.sim.time)
             self._lagging = self._overdue(self.sim.time + half_wake)
         if not self._lagging:
             self._doze_slack = 0.0  # caught up: a lag from now on is a stall
@@ -383,14 +348,14 @@ class Bridge:
         if self._inputs:
             self._dozing = False
             return 0
-        seconds = _REST_DOZE_S if self._resting() else _DOZE_S
+        seconds = _REST_DOZE_S if self.samples.resting(self.sim.time) else _DOZE_S
         if not self.sim.still and self.viewer is not None and self.viewer.watchers:
             seconds = min(seconds, self._view_period_s)
         limit = round(seconds / self.sim.timestep)
         read = [name for name, pub in self.pub.items() if pub.get_subscription_count()]
         due = [schedule.steps_until(read) if read else limit]
-        if self._samples.get_subscription_count():
-            rows_left = self._batch_now() - len(self._rows) // len(FIELDS)
+        if self.samples.read:
+            rows_left = self.samples.rows_left(self.sim.time)
             odom = schedule.steps_until(["odom"]) + (rows_left - 1) * schedule.periods["odom"]
             due.append(odom)
         ahead = max(0, min([limit, *due]) - schedule.steps_to_next())
