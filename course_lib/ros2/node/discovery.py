@@ -7,7 +7,7 @@ until it has seen endpoints of as many participants as are bound, every endpoint
 known by name (not `_NODE_NAME_UNKNOWN_`: that node's `ros_discovery_info` has not arrived),
 and the graph stayed the same for a moment. Without /proc it falls back on time: the
 course's Fast DDS profile makes every course process announce itself every
-`leaseAnnouncement` period, and participants answer a newcomer's announcement at once.
+`leaseAnnouncement` period, and a newcomer learns of the others by their next announcement.
 Every wait is bounded by the slowest announcement period Fast DDS uses by default, so
 nodes started without the course's profile are listed too and a stuck process costs at
 most that. The rules are pure: the graph and the clock are passed in.

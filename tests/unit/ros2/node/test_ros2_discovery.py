@@ -32,8 +32,8 @@ HALF_KNOWN = GraphView(frozenset(), frozenset({"/cmd_vel"}), unknown_endpoints=3
 
 def test_course_profile_gives_its_announcement_period_plus_endpoint_exchange() -> None:
     timing = profile_timing(PROFILE)
-    assert timing == DiscoveryTiming(floor_s=0.35, quiet_s=0.1, unknown_wait_s=3.5)
-    assert timing.warm_s == pytest.approx(0.45)
+    assert timing == DiscoveryTiming(floor_s=1.1, quiet_s=0.1, unknown_wait_s=3.5)
+    assert timing.warm_s == pytest.approx(1.2)
 
 
 def test_fast_dds_defaults_when_no_profile_or_an_unreadable_one(tmp_path) -> None:  # type: ignore[no-untyped-def]
@@ -42,12 +42,12 @@ def test_fast_dds_defaults_when_no_profile_or_an_unreadable_one(tmp_path) -> Non
     bad.write_text("<profiles><participant>")
     assert profile_timing(bad) == DEFAULT_TIMING
     assert profile_timing(tmp_path / "missing.xml") == DEFAULT_TIMING
-    period = "<leaseAnnouncement><sec>0</sec><nanosec>250000000</nanosec></leaseAnnouncement>"
+    period = "<leaseAnnouncement><sec>1</sec><nanosec>0</nanosec></leaseAnnouncement>"
     assert period in PROFILE.read_text()
-    slower = PROFILE.read_text().replace(
-        period, period.replace("0</sec><nanosec>25", "1</sec><nanosec>")
+    faster = PROFILE.read_text().replace(
+        period, period.replace("1</sec><nanosec>0", "0</sec><nanosec>250000000")
     )
-    assert timing_from_profile(slower).floor_s == pytest.approx(1.1)
+    assert timing_from_profile(faster).floor_s == pytest.approx(0.35)
 
 
 class Graph(FakeClock):
