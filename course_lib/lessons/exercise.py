@@ -167,17 +167,17 @@ class TravelExercise:
         with acting_door(DOOR):
             if api.param_get(NODE, "velocity").value == 0.0:
                 return
-            result = api.param_set(NODE, "velocity", 0.0)
+        result = self._stop_at_once()
         if strict and not result.successful:
             raise CourseError(f"Could not stop {NODE}: {result.reason}")
 
-    def _stop_at_once(self) -> None:
-        """Set velocity 0.0 without asking first: the robot is moving past its limit, and
-        every round trip saved is road it does not drive."""
+    def _stop_at_once(self) -> Any:
+        """Set velocity 0.0 without asking first (the guard's stop: the robot is moving past
+        its limit, and every round trip saved is road it does not drive); return the result."""
         from ..ros2.api import nodes_and_params as api
 
         with acting_door(DOOR):
-            api.param_set(NODE, "velocity", 0.0)
+            return api.param_set(NODE, "velocity", 0.0)
 
     def _held_now(self) -> Held:
         from ..ros2.api import nodes_and_params as api
