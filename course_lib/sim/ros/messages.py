@@ -16,17 +16,22 @@ from ..world.physics import Simulation
 __all__ = ["Frames", "MessageFactory", "stamp_seconds", "to_stamp"]
 
 
+def _sec_nanosec(seconds: float) -> tuple[int, int]:
+    """Return `seconds` as a stamp's whole seconds and nanoseconds (to the nearest ns)."""
+    return divmod(round(seconds * 1e9), 1_000_000_000)
+
+
 def stamp_seconds(seconds: float) -> float:
     """Return simulated `seconds` as a reader computes them from the stamp `to_stamp` makes
     (sec + nanosec * 1e-9), without making the message."""
-    sec, nanosec = divmod(round(seconds * 1e9), 1_000_000_000)
+    sec, nanosec = _sec_nanosec(seconds)
     return sec + nanosec * 1e-9
 
 
 def to_stamp(seconds: float) -> Time:
     """Return a builtin_interfaces/Time for simulated `seconds`."""
-    nanoseconds = round(seconds * 1e9)
-    return Time(sec=nanoseconds // 1_000_000_000, nanosec=nanoseconds % 1_000_000_000)
+    sec, nanosec = _sec_nanosec(seconds)
+    return Time(sec=sec, nanosec=nanosec)
 
 
 class Frames:
