@@ -37,6 +37,7 @@ from .orphans import (
     command_tag,
     owner_tag,
 )
+from .output_lines import output_lines
 
 __all__ = [
     "ChildProcess",
@@ -140,8 +141,9 @@ class ChildProcess:
         # Read while the child is not reaped yet, so `popen.pid` still names it.
         self._started = procfs.holder_start(popen.pid)
         self._group_cleared = False
+        started = time.monotonic()
         self._readers = [
-            threading.Thread(target=self._read, args=(pipe, stream), daemon=True)
+            threading.Thread(target=self._read, args=(pipe, stream, started), daemon=True)
             for pipe, stream in ((popen.stdout, "stdout"), (popen.stderr, "stderr"))
             if pipe is not None
         ]
@@ -183,16 +185,20 @@ class ChildProcess:
         with self._cond, contextlib.suppress(ValueError):
             self._listeners.remove(listener)
 
-    def _read(self, pipe: IO[bytes], stream: str) -> None:
-        for raw in iter(pipe.readline, b""):
-            line = OutputLine(stream, raw.decode("utf-8", "replace").rstrip("\r\n"), time.time())
+    def _read(self, pipe: IO[bytes], stream: str, started: float) -> None:
+        for raws, read_at in output_lines(pipe, started):
+            lines = [
+                OutputLine(stream, raw.decode("utf-8", "replace").rstrip("\r"), read_at)
+                for raw in raws
+            ]
             with self._cond:
-                self._lines.append(line)
+                self._lines.extend(lines)
                 listeners = list(self._listeners)
                 self._cond.notify_all()
-            for listener in listeners:
-                with contextlib.suppress(Exception):
-                    listener(line)
+            for line in lines:
+                for listener in listeners:
+                    with contextlib.suppress(Exception):
+                        listener(line)
         pipe.close()
         if stream == "stdout":
             # The output ended: the child has exited or soon will. Reap it here, so that a
