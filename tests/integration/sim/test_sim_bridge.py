@@ -104,6 +104,30 @@ def test_cmd_vel_gives_the_speed_on_odom(fresh: World) -> None:
     assert reading.pose.x > 0.1
 
 
+def test_the_same_command_after_a_reset_drives_again(fresh: World) -> None:
+    """The world skips a /cmd_vel message equal to the one whose command holds (the
+    tutorial's node repeats its own ten times a second); a reset stops the robot, so the same
+    message after it must count again, as a driving node's next message does in Gazebo."""
+    fresh.drive(0.2, 0.0)
+    fresh.wait_for_odom(lambda r: r.linear_mps > 0.15, timeout=10.0)
+    start = fresh.reset().time_s
+    fresh.drive(0.2, 0.0)  # byte for byte the message before the reset
+    reading = fresh.wait_sim_time(start + 1.0)
+    assert reading.linear_mps == pytest.approx(0.2, abs=0.01), reading
+    fresh.drive(0.0, 0.0)
+
+
+def test_back_to_back_commands_end_on_the_last(fresh: World) -> None:
+    """A program that sends "go" then "stop" at once leaves the robot stopped: the message
+    equal to the command that holds *now* (stop) is not skipped while "go" waits its step."""
+    for _ in range(5):
+        fresh.drive(0.2, 0.0)
+        fresh.drive(0.0, 0.0)
+    start = fresh.odom().time_s
+    reading = fresh.wait_sim_time(start + 1.0)
+    assert reading.linear_mps == pytest.approx(0.0, abs=0.01), reading
+
+
 @pytest.mark.parametrize("yaw_rate", [0.5, -0.5])
 def test_turn_gives_the_yaw_rate_and_sign(fresh: World, yaw_rate: float) -> None:
     start = fresh.odom().time_s
