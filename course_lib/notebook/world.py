@@ -24,8 +24,8 @@ from ..sim.world.samples import RobotSample
 
 __all__ = ["OdomReading", "World"]
 
-# A reading received longer ago than this is old: a resting robot's samples come once a second
-# (sim.world.samples), so a reader that needs a recent one asks for it (FRESH_TOPIC), at
+# A reading received longer ago than this is old: a resting robot's samples come every two
+# seconds (sim.world.samples), so a reader that needs a recent one asks for it (FRESH_TOPIC), at
 # most this often while it waits. A paused world sends none: its latest reading is the answer.
 STALE_S = 0.25
 

@@ -3,7 +3,7 @@
 Hidden from `ros2 topic list` (a leading underscore): World.reset() sends a number on
 RESET_TOPIC and waits for the same number on RESET_DONE_TOPIC. A reader that finds its
 latest sample old sends an empty message on FRESH_TOPIC: a robot at rest sends its samples
-once a second (sim.world.samples), and asked, sends those that wait at once and the next
+every two seconds (sim.world.samples), and asked, sends those that wait at once and the next
 ones every BATCH_S for a while.
 """
 

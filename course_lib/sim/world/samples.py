@@ -6,10 +6,10 @@ subscriptions at 50 Hz woke the kernel 150 times a second, and each wake-up cost
 1 ms of CPU; one message per BATCH_S of simulated time carries the same samples (the same
 floats as /odom's) at a tenth of the wake-ups. /odom and /joint_states are unchanged.
 
-A robot at rest for REST_S sends its samples a second to a message (REST_BATCH_S): a lab where
-the learner reads wakes its kernel once a second, not ten times. A reader that needs a recent
-one asks (sim.ros.topics.FRESH_TOPIC): the waiting samples come at once, and the next ones
-every BATCH_S for FRESH_HOLD_S.
+A robot at rest for REST_S sends two seconds of samples to a message (REST_BATCH_S): a lab
+where the learner reads wakes its kernel every two seconds, not ten times a second. A reader
+that needs a recent one asks (sim.ros.topics.FRESH_TOPIC): the waiting samples come at once,
+and the next ones every BATCH_S for FRESH_HOLD_S.
 """
 
 from __future__ import annotations
@@ -32,7 +32,7 @@ __all__ = [
 SAMPLES_TOPIC = "/_mujoco/samples"  # std_msgs/Float64MultiArray, rows of FIELDS
 BATCH_S = 0.1  # simulated seconds of samples in one message
 REST_S = 1.0  # simulated seconds at rest before the messages grow to REST_BATCH_S
-REST_BATCH_S = 1.0  # simulated seconds of samples in one message of a robot at rest
+REST_BATCH_S = 2.0  # simulated seconds of samples in one message of a robot at rest
 FRESH_HOLD_S = 2.0  # simulated seconds of BATCH_S messages after a reader asked for fresh ones
 
 
