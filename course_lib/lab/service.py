@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import contextlib
 import logging
+import socket
 import socketserver
 import threading
 from collections.abc import Callable
@@ -74,6 +75,7 @@ class MachineService:
         }
         self._server: _Server | None = None
         self._thread: threading.Thread | None = None
+        self._stopping = False  # stop() sets it, then wakes the serving loop
 
     def answer(self, request: dict[str, Any]) -> dict[str, Any]:
         """Return the answer to one request."""
@@ -108,16 +110,27 @@ class MachineService:
         server.machine = self
         self.path.chmod(0o600)
         self._server = server
+        self._stopping = False
         self._thread = threading.Thread(
-            target=server.serve_forever, name="course-machine", daemon=True
+            target=self._serve, args=(server,), name="course-machine", daemon=True
         )
         self._thread.start()
         return self
 
+    def _serve(self, server: _Server) -> None:
+        """Answer each connection as it comes and sleep in between (serve_forever woke
+        twice a second to look for a shutdown: most of an idle lab service's CPU)."""
+        while not self._stopping:
+            server.handle_request()
+
     def stop(self) -> None:
         """Stop listening, then stop the world; idempotent."""
         if self._server is not None:
-            self._server.shutdown()
+            self._stopping = True
+            with contextlib.suppress(OSError), socket.socket(socket.AF_UNIX) as wake:
+                wake.connect(str(self.path))  # the loop's wait ends; it sees _stopping
+            if self._thread is not None:
+                self._thread.join(timeout=5.0)
             self._server.server_close()
             self._server = None
         self.path.unlink(missing_ok=True)
