@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
+import logging
 import os
 import queue
 import re
@@ -54,6 +55,7 @@ _LOGGED_ERROR = re.compile(r"\[(ERROR|FATAL)\] ")  # a ROS log line's level
 _NEXT_LINE_WAIT_S = 2.0  # after a first line at ERROR: does a traceback follow?
 T = TypeVar("T")
 _LIBC = ctypes.CDLL(None, use_errno=True)  # loaded once: preexec must not load libraries
+_log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -197,8 +199,12 @@ class ChildProcess:
                 self._cond.notify_all()
             for line in lines:
                 for listener in listeners:
-                    with contextlib.suppress(Exception):
+                    try:
                         listener(line)
+                    except Exception:  # never stops the reading: logged once, then dropped
+                        _log.exception("a reader of %s's output failed; it is dropped", self.name)
+                        self.remove_listener(listener)
+                        listeners = [known for known in listeners if known is not listener]
         pipe.close()
         if stream == "stdout":
             # The output ended: the child has exited or soon will. Reap it here, so that a

@@ -59,3 +59,28 @@ def test_a_child_just_started_is_read_line_by_line(pipe: tuple[io.BufferedReader
     times = [at for _batch, at in reads]
     gaps = [later - earlier for earlier, later in itertools.pairwise(times)]
     assert min(gaps[:-1]) > 0.03, gaps  # each line's time is its own, not its batch's
+
+
+def test_a_failing_reader_of_the_output_is_said_once_and_the_others_read_on(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    import logging
+    import sys
+
+    from course_lib.processes.children import spawn
+
+    code = "import time\nfor n in range(6):\n    print(n, flush=True); time.sleep(0.05)"
+    child = spawn([sys.executable, "-c", code], name="counter")
+    heard: list[str] = []
+
+    def broken(_line: object) -> None:
+        raise RuntimeError("a reader's own bug")
+
+    child.add_listener(broken)
+    child.add_listener(lambda line: heard.append(line.text))
+    with caplog.at_level(logging.ERROR):
+        assert child.wait(10.0) == 0
+    # the lines after the readers were added, in order, to the last (earlier ones may be read
+    # before the readers came)
+    assert heard and heard == [str(n) for n in range(6)][-len(heard) :], heard
+    assert caplog.text.count("a reader of counter's output failed") == 1, caplog.text
