@@ -56,7 +56,10 @@ _log = logging.getLogger(__name__)
 # calls spin_once with a timeout. Only here: this node's entities never change while it spins
 # (a client node that destroyed a subscription under the events executor crashed its process).
 _DRIVE_NODE = "turtlebot3_diff_drive"
-_EVENTS_WAIT_S = 1.0  # the longest the drive's thread waits before it looks at _stop again
+# The longest the drive's thread waits before it looks at _stop again: close() shuts its
+# executor down, which ends the wait at once, so this only bounds a thread nobody closes (a
+# wake a second cost a still world 0.0002 cores).
+_EVENTS_WAIT_S = 30.0
 # The loop sleeps through the points nobody reads (Bridge._doze), at most this long: the
 # course's samples come every BATCH_S (0.1 s), or every REST_BATCH_S once the robot has rested
 # REST_S; a moving robot that a 3D view shows wakes for each of the view's frames. A wake costs

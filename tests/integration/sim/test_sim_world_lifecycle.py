@@ -91,3 +91,19 @@ def test_a_killed_kernel_leaves_no_world_behind() -> None:
         owner.wait(5)
         owner.stdout.close()
         owner.stdin.close()
+
+
+def test_a_world_asked_to_stop_ends_at_once(session: Session) -> None:
+    """The world's `/cmd_vel` thread waits up to 30 s for a message; stopping the world shuts
+    its executor down, which must end that wait then (else close() gives up after 2 s)."""
+    import time
+
+    world = start_world(session, show=False)
+    world.odom()
+    time.sleep(1.5)  # the robot rests: the thread waits in its executor
+    started = time.monotonic()
+    world.stop()
+    took = time.monotonic() - started
+    assert not world.process.alive
+    assert world.process.returncode == 0
+    assert took < 1.5, f"stop() took {took:.2f} s"
