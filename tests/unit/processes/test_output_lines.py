@@ -4,13 +4,16 @@ from __future__ import annotations
 
 import io
 import itertools
+import logging
 import os
+import sys
 import threading
 import time
 from collections.abc import Iterator
 
 import pytest
 
+from course_lib.processes.children import spawn
 from course_lib.processes.output_lines import GATHER_S, PROMPT_S, output_lines
 
 
@@ -64,11 +67,6 @@ def test_a_child_just_started_is_read_line_by_line(pipe: tuple[io.BufferedReader
 def test_a_failing_reader_of_the_output_is_said_once_and_the_others_read_on(
     caplog: pytest.LogCaptureFixture,
 ) -> None:
-    import logging
-    import sys
-
-    from course_lib.processes.children import spawn
-
     code = "import time\nfor n in range(6):\n    print(n, flush=True); time.sleep(0.05)"
     child = spawn([sys.executable, "-c", code], name="counter")
     heard: list[str] = []
